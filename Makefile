@@ -1,0 +1,32 @@
+# BxDF Lab: `make test` and `make report` do everything on a fresh Debian machine
+# (install missing packages, configure, build, then test or report).
+BUILD  ?= build
+JOBS   ?= $(shell nproc)
+PYTHON := /usr/bin/python3
+CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
+
+.PHONY: all deps configure build test test-cpp test-python test-blender report bench clean
+
+all: build
+
+deps:
+	@bash tools/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD) $(CMAKE_FLAGS) -DPython_EXECUTABLE=$(PYTHON) > $(BUILD).configure.log 2>&1 \
+	  || (cat $(BUILD).configure.log; exit 1)
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	@bash tools/run-tests.sh $(BUILD)
+
+report: build
+	@$(PYTHON) tools/rho_table.py $(BUILD)
+
+bench: build
+	@bash tools/run-bench.sh $(BUILD)
+
+clean:
+	rm -rf $(BUILD) $(BUILD).configure.log

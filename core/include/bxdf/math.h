@@ -1,0 +1,91 @@
+// Scalar and 3-vector math shared by every model. Directions live in the local
+// shading frame (z = normal) unless a name says otherwise.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace bxdf {
+
+constexpr float kPi = 3.14159265358979323846f;
+constexpr float kInvPi = 0.31830988618379067154f;
+constexpr float kInv2Pi = 0.15915494309189533577f;
+constexpr float kInv4Pi = 0.07957747154594766788f;
+constexpr float kPiOver2 = 1.57079632679489661923f;
+constexpr float kPiOver4 = 0.78539816339744830961f;
+
+inline float radians(float deg) { return deg * (kPi / 180.0f); }
+inline float degrees(float rad) { return rad * (180.0f / kPi); }
+
+template <class T>
+inline T clamp(T v, T lo, T hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
+// sqrt that treats tiny negative round-off as zero instead of producing NaN.
+inline float safe_sqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
+inline float safe_acos(float x) { return std::acos(clamp(x, -1.0f, 1.0f)); }
+
+// True for a finite, non-negative number (NaN fails both comparisons).
+inline bool finite_nonnegative(float x) {
+  return x >= 0.0f && x <= std::numeric_limits<float>::max();
+}
+// Maps NaN, Inf and negatives to 0: the last line of defence before a value leaves a model.
+inline float sanitize_nonnegative(float x) { return finite_nonnegative(x) ? x : 0.0f; }
+
+struct Vec3 {
+  float x = 0, y = 0, z = 0;
+  constexpr Vec3() = default;
+  constexpr Vec3(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
+  float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  Vec3 operator+(const Vec3& o) const { return {x + o.x, y + o.y, z + o.z}; }
+  Vec3 operator-(const Vec3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+  Vec3 operator-() const { return {-x, -y, -z}; }
+  Vec3 operator*(float s) const { return {x * s, y * s, z * s}; }
+  Vec3 operator/(float s) const { return *this * (1.0f / s); }
+  Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
+  Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+  bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+inline Vec3 operator*(float s, const Vec3& v) { return v * s; }
+inline float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline float abs_dot(const Vec3& a, const Vec3& b) { return std::fabs(dot(a, b)); }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline float length_squared(const Vec3& v) { return dot(v, v); }
+inline float length(const Vec3& v) { return std::sqrt(dot(v, v)); }
+inline Vec3 normalize(const Vec3& v) { return v / length(v); }
+inline bool is_finite(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+// Flips v into the hemisphere of ref.
+inline Vec3 face_forward(const Vec3& v, const Vec3& ref) { return dot(v, ref) < 0.0f ? -v : v; }
+
+// Normalises a direction a caller handed us. Returns false for zero, tiny or non-finite
+// vectors, which every model treats as "no direction" and answers with 0.
+inline bool normalize_direction(Vec3& v) {
+  const float l2 = length_squared(v);
+  if (!(l2 > 1e-30f) || !(l2 <= std::numeric_limits<float>::max())) return false;
+  v = v * (1.0f / std::sqrt(l2));
+  return true;
+}
+
+// Two-sided coordinate system around a unit vector (Duff et al. 2017, branchless ONB).
+inline void coordinate_system(const Vec3& n, Vec3* s, Vec3* t) {
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float b = n.x * n.y * a;
+  *s = Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  *t = Vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+struct Point2 {
+  float x = 0, y = 0;
+  constexpr Point2() = default;
+  constexpr Point2(float x_, float y_) : x(x_), y(y_) {}
+};
+
+}  // namespace bxdf

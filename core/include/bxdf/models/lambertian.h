@@ -1,0 +1,39 @@
+// Lambertian reflection: f = R/π, the seed's ideal diffuse reflector. ρhd = ρhh = R exactly.
+#pragma once
+
+#include "bxdf/bxdf.h"
+#include "bxdf/sampling.h"
+
+namespace bxdf {
+
+class Lambertian final : public BxDFImpl<Lambertian> {
+ public:
+  explicit Lambertian(const RGB& reflectance)
+      : BxDFImpl(kReflection | kDiffuse), r_(reflectance), r_over_pi_(reflectance * kInvPi) {}
+
+  RGB eval(const Vec3& wo, const Vec3& wi) const {
+    return same_hemisphere(wo, wi) ? r_over_pi_ : RGB(0.0f);
+  }
+  BxDFSample sample(const Vec3& wo, Point2 u) const {
+    BxDFSample s;
+    if (wo.z == 0.0f) return s;
+    s.wi = sample_cosine_hemisphere(u);
+    if (wo.z < 0.0f) s.wi.z = -s.wi.z;
+    s.pdf = cosine_hemisphere_pdf(std::fabs(s.wi.z));
+    s.f = r_over_pi_;
+    s.flags = kReflection | kDiffuse;
+    return s;
+  }
+  float density(const Vec3& wo, const Vec3& wi) const {
+    return same_hemisphere(wo, wi) ? cosine_hemisphere_pdf(std::fabs(wi.z)) : 0.0f;
+  }
+
+  RGB rho_hd(const Vec3&, int, uint64_t) const override { return r_; }
+  RGB rho_hh(int, uint64_t) const override { return r_; }
+  const RGB& reflectance() const { return r_; }
+
+ private:
+  RGB r_, r_over_pi_;
+};
+
+}  // namespace bxdf

@@ -1,0 +1,40 @@
+#include "bxdf/registry.h"
+
+namespace bxdf {
+
+namespace {
+
+std::vector<ModelInfo> builtin_models() {
+  // One line per model; each declaration lives in the model's own source file.
+  return {
+      lambertian_model(),
+  };
+}
+
+}  // namespace
+
+const std::vector<ModelInfo>& models() {
+  static const std::vector<ModelInfo> all = builtin_models();
+  return all;
+}
+
+const ModelInfo* find_model(const std::string& name) {
+  for (const auto& m : models())
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+BxDFPtr make(const std::string& name, const ParamSet& params) {
+  const ModelInfo* info = find_model(name);
+  if (!info) {
+    std::string known;
+    for (const auto& m : models()) known += (known.empty() ? "" : ", ") + m.name;
+    throw ParameterError("unknown model '" + name + "'; known models: " + known);
+  }
+  ParamSet validated = validate_params(name, info->params, params);
+  std::unique_ptr<BxDF> model = info->create(validated);
+  model->set_identity(name, std::move(validated));
+  return BxDFPtr(std::move(model));
+}
+
+}  // namespace bxdf

@@ -1,0 +1,67 @@
+// The registry refuses bad parameters with the parameter's name, the value and the range,
+// and rebuilds a model from its own params().
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "bxdf/registry.h"
+
+using namespace bxdf;
+
+namespace {
+
+std::string error_of(const std::string& model, const ParamSet& p) {
+  try {
+    make(model, p);
+  } catch (const ParameterError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Registry, UnknownModelIsRefusedWithTheKnownList) {
+  const std::string msg = error_of("no_such_model", {});
+  EXPECT_NE(msg.find("no_such_model"), std::string::npos);
+  EXPECT_NE(msg.find("lambertian"), std::string::npos);
+}
+
+TEST(Registry, UnknownParameterIsRefusedByName) {
+  ParamSet p;
+  p.set("sigmaa", 3.0);
+  const std::string msg = error_of("lambertian", p);
+  EXPECT_NE(msg.find("sigmaa"), std::string::npos) << msg;
+}
+
+TEST(Registry, OutOfRangeAndNaNNameParameterValueAndRange) {
+  ParamSet p;
+  p.set("reflectance", RGBValue{0.5, 1.5, 0.5});
+  std::string msg = error_of("lambertian", p);
+  EXPECT_NE(msg.find("'reflectance'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("1.5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("[0, 1]"), std::string::npos) << msg;
+  p.set("reflectance", RGBValue{0.5, std::nan(""), 0.5});
+  msg = error_of("lambertian", p);
+  EXPECT_NE(msg.find("nan"), std::string::npos) << msg;
+}
+
+TEST(Registry, EveryModelRoundTripsThroughItsParams) {
+  for (const ModelInfo& info : models()) {
+    SCOPED_TRACE(info.name);
+    ASSERT_FALSE(info.doc.empty());
+    for (const ParamSpec& s : info.params) EXPECT_FALSE(s.doc.empty()) << s.name;
+    BxDFPtr a = make(info.name);
+    EXPECT_EQ(a->model_name(), info.name);
+    BxDFPtr b = make(info.name, a->params());
+    EXPECT_TRUE(a->params() == b->params());
+  }
+}
+
+TEST(Registry, GreyNumberIsAcceptedForRGB) {
+  ParamSet p;
+  p.set("reflectance", 0.25);
+  BxDFPtr m = make("lambertian", p);
+  EXPECT_EQ(m->params().rgb("reflectance")[1], 0.25);
+}
