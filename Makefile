@@ -23,7 +23,7 @@ test: build
 	@bash tools/run-tests.sh $(BUILD)
 
 report: build
-	@$(PYTHON) tools/rho_table.py $(BUILD)
+	@$(BUILD)/core/bxdf-rho-table
 
 bench: build
 	@bash tools/run-bench.sh $(BUILD)
