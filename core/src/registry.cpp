@@ -8,6 +8,13 @@ std::vector<ModelInfo> builtin_models() {
   // One line per model; each declaration lives in the model's own source file.
   return {
       lambertian_model(),
+      lambertian_transmission_model(),
+      oren_nayar_model(),
+      specular_reflection_model(),
+      specular_transmission_model(),
+      fresnel_specular_model(),
+      lafortune_model(),
+      cycles_oren_nayar_model(),
   };
 }
 

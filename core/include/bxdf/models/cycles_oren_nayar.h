@@ -1,0 +1,54 @@
+// Cycles 3.4's Diffuse BSDF with roughness > 0 (Fujii's "improved" Oren–Nayar), written out so
+// that a render can match Cycles exactly: σ = roughness (no degrees, no squaring),
+// A = 1/(π + (π/2 − 2/3)σ), B = σA, s = ωi·ωo − cosθi cosθo,
+// t = max(cosθi, cosθo) if s > 0 else 1, f = color (A + B s/t). roughness 0 is Lambertian.
+#pragma once
+
+#include "bxdf/bxdf.h"
+#include "bxdf/sampling.h"
+
+namespace bxdf {
+
+class CyclesOrenNayar final : public BxDFImpl<CyclesOrenNayar> {
+ public:
+  CyclesOrenNayar(const RGB& color, float roughness)
+      : BxDFImpl(kReflection | kDiffuse), color_(color) {
+    const float sigma = clamp(roughness, 0.0f, 1.0f);
+    a_ = 1.0f / (kPi + (kPiOver2 - 2.0f / 3.0f) * sigma);
+    b_ = sigma * a_;
+  }
+
+  RGB eval(const Vec3& wo, const Vec3& wi) const {
+    if (!same_hemisphere(wo, wi)) return RGB(0.0f);
+    // Two-sided: Cycles flips the normal towards the viewer, so use |cos θ| on both sides.
+    // With both directions on one side, ωi·ωo − cosθi cosθo is just the tangential part.
+    const float cos_i = abs_cos_theta(wi), cos_o = abs_cos_theta(wo);
+    const float s = wi.x * wo.x + wi.y * wo.y;
+    // t > 0 here, since same_hemisphere guarantees both cosines are non-zero. For s ≤ 0 the
+    // term is negative but A + B s ≥ A − B = (1 − σ)A ≥ 0, since s ≥ −1.
+    const float s_over_t = s > 0.0f ? s / std::max(cos_i, cos_o) : s;
+    return color_ * std::max(0.0f, a_ + b_ * s_over_t);
+  }
+  BxDFSample sample(const Vec3& wo, Point2 u) const {
+    BxDFSample s;
+    if (wo.z == 0.0f) return s;
+    s.wi = sample_cosine_hemisphere(u);
+    if (wo.z < 0.0f) s.wi.z = -s.wi.z;
+    s.pdf = cosine_hemisphere_pdf(std::fabs(s.wi.z));
+    s.f = eval(wo, s.wi);
+    s.flags = kReflection | kDiffuse;
+    return s;
+  }
+  float density(const Vec3& wo, const Vec3& wi) const {
+    return same_hemisphere(wo, wi) ? cosine_hemisphere_pdf(std::fabs(wi.z)) : 0.0f;
+  }
+
+  float a() const { return a_; }
+  float b() const { return b_; }
+
+ private:
+  RGB color_;
+  float a_ = kInvPi, b_ = 0.0f;
+};
+
+}  // namespace bxdf

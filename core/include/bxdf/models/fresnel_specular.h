@@ -1,0 +1,51 @@
+// Smooth glass (pbrt-v3 FresnelSpecular): one sample either reflects, with probability
+// F(cos θo), weight F R / |cos θi|, or refracts, with probability 1 − F, weight
+// T (1 − F) (η_o/η_i)² / |cos θi| (radiance transport), so that f |cos θi| / pdf is R for a
+// reflected sample and T (η_o/η_i)² for a refracted one. Total internal reflection has F = 1:
+// it always reflects.
+#pragma once
+
+#include "bxdf/bxdf.h"
+#include "bxdf/fresnel.h"
+#include "bxdf/specular.h"
+
+namespace bxdf {
+
+class FresnelSpecular final : public BxDFImpl<FresnelSpecular> {
+ public:
+  FresnelSpecular(const RGB& reflectance, const RGB& transmittance, float eta_i, float eta_t)
+      : BxDFImpl(kReflection | kTransmission | kSpecular),
+        r_(reflectance),
+        t_(transmittance),
+        eta_i_(eta_i),
+        eta_t_(eta_t) {}
+
+  RGB eval(const Vec3&, const Vec3&) const { return RGB(0.0f); }
+  BxDFSample sample(const Vec3& wo, Point2 u) const {
+    BxDFSample s;
+    if (wo.z == 0.0f) return s;
+    // Signed cos θo: below the surface the light is inside the glass and the indices swap.
+    const float fresnel = fresnel_dielectric(cos_theta(wo), eta_i_, eta_t_);
+    if (u.x < fresnel) {
+      s.wi = specular_reflect(wo);
+      s.pdf = fresnel;
+      s.f = r_ * (fresnel / abs_cos_theta(s.wi));
+      s.flags = kReflection | kSpecular;
+      return s;
+    }
+    float radiance_scale = 1.0f;
+    // F < 1 here, so refraction exists; the check only guards rounding at the critical angle.
+    if (!specular_refract(wo, eta_i_, eta_t_, &s.wi, &radiance_scale) || s.wi.z == 0.0f) return s;
+    s.pdf = 1.0f - fresnel;
+    s.f = t_ * ((1.0f - fresnel) * radiance_scale / abs_cos_theta(s.wi));
+    s.flags = kTransmission | kSpecular;
+    return s;
+  }
+  float density(const Vec3&, const Vec3&) const { return 0.0f; }
+
+ private:
+  RGB r_, t_;
+  float eta_i_, eta_t_;
+};
+
+}  // namespace bxdf

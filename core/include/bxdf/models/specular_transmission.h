@@ -1,0 +1,37 @@
+// Perfect specular transmission through a smooth dielectric (pbrt-v3 SpecularTransmission,
+// radiance transport): a delta lobe in the refracted direction with weight
+// T (1 − F) (η_o/η_i)² / |cos θi|. wo above the surface (cos θo > 0) is outside (eta_i);
+// below is inside (eta_t). Total internal reflection gives no sample: this lobe only transmits.
+#pragma once
+
+#include "bxdf/bxdf.h"
+#include "bxdf/fresnel.h"
+#include "bxdf/specular.h"
+
+namespace bxdf {
+
+class SpecularTransmission final : public BxDFImpl<SpecularTransmission> {
+ public:
+  SpecularTransmission(const RGB& transmittance, float eta_i, float eta_t)
+      : BxDFImpl(kTransmission | kSpecular), t_(transmittance), eta_i_(eta_i), eta_t_(eta_t) {}
+
+  RGB eval(const Vec3&, const Vec3&) const { return RGB(0.0f); }
+  BxDFSample sample(const Vec3& wo, Point2) const {
+    BxDFSample s;
+    float radiance_scale = 1.0f;
+    if (!specular_refract(wo, eta_i_, eta_t_, &s.wi, &radiance_scale) || s.wi.z == 0.0f) return s;
+    // F is the same seen from either end of the refracted pair; pbrt evaluates it at cos θi.
+    const float fresnel = fresnel_dielectric(cos_theta(s.wi), eta_i_, eta_t_);
+    s.pdf = 1.0f;
+    s.f = t_ * ((1.0f - fresnel) * radiance_scale / abs_cos_theta(s.wi));
+    s.flags = kTransmission | kSpecular;
+    return s;
+  }
+  float density(const Vec3&, const Vec3&) const { return 0.0f; }
+
+ private:
+  RGB t_;
+  float eta_i_, eta_t_;
+};
+
+}  // namespace bxdf

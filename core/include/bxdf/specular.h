@@ -1,0 +1,32 @@
+// Directions and weights of a perfectly smooth interface, shared by the delta (specular)
+// models: the mirror direction and refraction through a dielectric whose outside (z > 0)
+// has index eta_i and inside eta_t.
+#pragma once
+
+#include "bxdf/frame.h"
+
+namespace bxdf {
+
+// Mirror direction about the normal (0, 0, 1) in the local frame.
+inline Vec3 specular_reflect(const Vec3& wo) { return {-wo.x, -wo.y, wo.z}; }
+
+// Refraction of wo through the interface (wo on either side). On success writes wi (on the
+// other side) and radiance_scale = (η_o/η_i)², where η_o is the index on wo's side and η_i on
+// wi's side: L/η² is conserved along a ray that crosses the interface, because the beam's
+// solid angle is squeezed or widened by (η_i/η_o)², so radiance that passes from wi's medium
+// into wo's medium is scaled by (η_o/η_i)² (pbrt-v3's TransportMode::Radiance).
+// Returns false on total internal reflection or at exactly grazing wo.
+inline bool specular_refract(const Vec3& wo, float eta_i, float eta_t, Vec3* wi,
+                             float* radiance_scale) {
+  if (wo.z == 0.0f) return false;
+  const bool entering = wo.z > 0.0f;
+  const float eta_wo_side = entering ? eta_i : eta_t;
+  const float eta_wi_side = entering ? eta_t : eta_i;
+  const Vec3 n(0.0f, 0.0f, entering ? 1.0f : -1.0f);
+  if (!refract(wo, n, eta_wo_side / eta_wi_side, wi)) return false;
+  const float ratio = eta_wo_side / eta_wi_side;
+  *radiance_scale = ratio * ratio;
+  return true;
+}
+
+}  // namespace bxdf
