@@ -60,8 +60,8 @@ TEST(CyclesOrenNayar, MatchesCyclesDefinition) {
 
 TEST(CyclesOrenNayar, KnownValues) {
   // Roughness 0 is Lambert.
-  EXPECT_NEAR(make_con(0.5, 0.0)->f(Vec3(0.3f, 0.2f, 0.9f), Vec3(-0.5f, 0.1f, 0.4f)).r,
-              0.5 / M_PI, 1e-7);
+  EXPECT_NEAR(make_con(0.5, 0.0)->f(Vec3(0.3f, 0.2f, 0.9f), Vec3(-0.5f, 0.1f, 0.4f)).r, 0.5 / M_PI,
+              1e-7);
   // Roughness 1, both at the normal: s = 0, f = A = 1/(π + π/2 − 2/3) ≈ 0.247174.
   EXPECT_NEAR(make_con(1.0, 1.0)->f(Vec3(0, 0, 1), Vec3(0, 0, 1)).r, 0.247174, 1e-6);
   // Roughness 1, opposite azimuths at grazing: s → −1 and f → A − B = 0, never negative.

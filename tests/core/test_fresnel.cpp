@@ -57,8 +57,7 @@ const Metal kMetals[] = {{"gold", 0.370, 2.820},
 TEST(FresnelDielectric, NormalIncidenceIsSquaredIndexContrast) {
   for (double eta_t : {1.333, 1.5, 2.42}) {
     const double expected = std::pow((eta_t - 1.0) / (eta_t + 1.0), 2.0);
-    EXPECT_NEAR(fresnel_dielectric(1.0f, 1.0f, static_cast<float>(eta_t)), expected, 1e-6)
-        << eta_t;
+    EXPECT_NEAR(fresnel_dielectric(1.0f, 1.0f, static_cast<float>(eta_t)), expected, 1e-6) << eta_t;
   }
   EXPECT_NEAR(fresnel_dielectric(1.0f, 1.0f, 1.5f), 0.04, 1e-6);
 }
@@ -67,9 +66,9 @@ TEST(FresnelDielectric, MatchesTheAngleFormsAt45And89Degrees) {
   for (double eta_t : {1.31, 1.5, 2.42}) {
     for (double theta : {deg(45.0), deg(89.0)}) {
       const double expected = dielectric_by_angles(theta, 1.0, eta_t);
-      EXPECT_NEAR(fresnel_dielectric(static_cast<float>(std::cos(theta)), 1.0f,
-                                     static_cast<float>(eta_t)),
-                  expected, 2e-5)
+      EXPECT_NEAR(
+          fresnel_dielectric(static_cast<float>(std::cos(theta)), 1.0f, static_cast<float>(eta_t)),
+          expected, 2e-5)
           << "eta_t " << eta_t << " theta " << theta;
     }
   }
@@ -81,11 +80,11 @@ TEST(FresnelDielectric, BrewsterAngleHasNoParallelReflection) {
   for (double eta_t : {1.333, 1.5, 2.42}) {
     const double theta_b = std::atan(eta_t);  // tan θB = ηt/ηi
     const double theta_t = std::asin(std::sin(theta_b) / eta_t);
-    ASSERT_NEAR(theta_b + theta_t, kPiD / 2, 1e-12);  // so r∥ = tan(θi − θt)/tan(90°) = 0
+    ASSERT_NEAR(theta_b + theta_t, kPiD / 2, 1e-12);     // so r∥ = tan(θi − θt)/tan(90°) = 0
     const double r_perp = -std::sin(theta_b - theta_t);  // sin(θi + θt) = 1
-    EXPECT_NEAR(fresnel_dielectric(static_cast<float>(std::cos(theta_b)), 1.0f,
-                                   static_cast<float>(eta_t)),
-                0.5 * r_perp * r_perp, 2e-6)
+    EXPECT_NEAR(
+        fresnel_dielectric(static_cast<float>(std::cos(theta_b)), 1.0f, static_cast<float>(eta_t)),
+        0.5 * r_perp * r_perp, 2e-6)
         << eta_t;
   }
 }
@@ -101,7 +100,8 @@ TEST(FresnelDielectric, FromInsideSwapsIndicesAndTotallyReflects) {
   // Beyond it: total internal reflection.
   for (double theta : {critical + 1e-3, deg(45.0), deg(60.0), deg(89.0)})
     EXPECT_EQ(fresnel_dielectric(-static_cast<float>(std::cos(theta)), 1.0f, 1.5f), 1.0f) << theta;
-  // Reflectance is the same from both ends of a refracted pair (Stokes): F(θi; 1→1.5) = F(θt; 1.5→1).
+  // Reflectance is the same from both ends of a refracted pair (Stokes): F(θi; 1→1.5) =
+  // F(θt; 1.5→1).
   const double theta_i = deg(50.0), theta_t = std::asin(std::sin(theta_i) / 1.5);
   EXPECT_NEAR(fresnel_dielectric(static_cast<float>(std::cos(theta_i)), 1.0f, 1.5f),
               fresnel_dielectric(-static_cast<float>(std::cos(theta_t)), 1.0f, 1.5f), 1e-6);
@@ -135,10 +135,10 @@ TEST(FresnelConductor, ExactFormulaMatchesComplexSnellsLaw) {
   for (double eta_i : {1.0, 1.33}) {
     for (const Metal& m : kMetals) {
       for (double theta : {0.0, deg(30.0), deg(60.0), deg(80.0), deg(89.0)}) {
-        EXPECT_NEAR(fresnel_conductor_exact(static_cast<float>(std::cos(theta)),
-                                            static_cast<float>(eta_i), static_cast<float>(m.eta),
-                                            static_cast<float>(m.k)),
-                    conductor_by_complex_snell(theta, eta_i, m.eta, m.k), 2e-5)
+        EXPECT_NEAR(
+            fresnel_conductor_exact(static_cast<float>(std::cos(theta)), static_cast<float>(eta_i),
+                                    static_cast<float>(m.eta), static_cast<float>(m.k)),
+            conductor_by_complex_snell(theta, eta_i, m.eta, m.k), 2e-5)
             << m.name << " eta_i " << eta_i << " theta " << theta;
       }
     }
@@ -147,18 +147,20 @@ TEST(FresnelConductor, ExactFormulaMatchesComplexSnellsLaw) {
 
 TEST(FresnelConductor, SeedAndExactAgreeAtNormalIncidenceAndDifferAt60Degrees) {
   for (const Metal& m : kMetals) {
-    const double f0 = ((m.eta - 1) * (m.eta - 1) + m.k * m.k) / ((m.eta + 1) * (m.eta + 1) + m.k * m.k);
+    const double f0 =
+        ((m.eta - 1) * (m.eta - 1) + m.k * m.k) / ((m.eta + 1) * (m.eta + 1) + m.k * m.k);
     EXPECT_NEAR(fresnel_conductor_seed(1.0f, static_cast<float>(m.eta), static_cast<float>(m.k)),
                 f0, 1e-6);
-    EXPECT_NEAR(fresnel_conductor_exact(1.0f, 1.0f, static_cast<float>(m.eta),
-                                        static_cast<float>(m.k)),
-                f0, 1e-6);
+    EXPECT_NEAR(
+        fresnel_conductor_exact(1.0f, 1.0f, static_cast<float>(m.eta), static_cast<float>(m.k)), f0,
+        1e-6);
   }
   // Copper at 60°: seed 0.7451, exact 0.7393 (from the two independent evaluations above).
   const double seed = conductor_seed_formula(std::cos(deg(60.0)), 0.617, 2.630);
   const double exact = conductor_by_complex_snell(deg(60.0), 1.0, 0.617, 2.630);
   EXPECT_GT(seed - exact, 5e-3);
-  EXPECT_NEAR(fresnel_conductor_seed(0.5f, 0.617f, 2.630f) - fresnel_conductor_exact(0.5f, 1.0f, 0.617f, 2.630f),
+  EXPECT_NEAR(fresnel_conductor_seed(0.5f, 0.617f, 2.630f) -
+                  fresnel_conductor_exact(0.5f, 1.0f, 0.617f, 2.630f),
               seed - exact, 1e-5);
 }
 

@@ -37,13 +37,15 @@ ParamSet lafortune_params(const RGBValue& diffuse, const std::vector<LobeRow>& r
 // Lafortune et al.'s clay fit (reference/models.md): one lobe below the horizon (Cz < 0),
 // two forward lobes.
 ParamSet clay() {
-  return lafortune_params(
-      {.383626, .260749, .274207},
-      {{{-1.089701, -1.102701, -1.107603}, {-1.354682, -2.714801, -1.569866},
-        {17.968505, 11.024489, 21.270282}},
-       {{-.733381, -.793320, -.848206}, {.676108, .679314, .726031}, {8.219745, 9.055139, 11.261951}},
-       {{-1.010548, -1.012378, -1.011263}, {.910783, .885239, .892451},
-        {152.912795, 141.937171, 201.046802}}});
+  return lafortune_params({.383626, .260749, .274207}, {{{-1.089701, -1.102701, -1.107603},
+                                                         {-1.354682, -2.714801, -1.569866},
+                                                         {17.968505, 11.024489, 21.270282}},
+                                                        {{-.733381, -.793320, -.848206},
+                                                         {.676108, .679314, .726031},
+                                                         {8.219745, 9.055139, 11.261951}},
+                                                        {{-1.010548, -1.012378, -1.011263},
+                                                         {.910783, .885239, .892451},
+                                                         {152.912795, 141.937171, 201.046802}}});
 }
 
 // An anisotropic lobe, a retro-reflective one (Cx, Cy > 0) and a constant one (n = 0).
@@ -73,8 +75,8 @@ ParamSet mixed() {
 double lafortune_reference(const ParamSet& p, int c, const Vec3& wo, const Vec3& wi) {
   double f = p.rgb("diffuse")[c] / M_PI;
   for (const ParamSet& l : p.list("lobes")) {
-    const double d = l.rgb("cx")[c] * wo.x * wi.x + l.rgb("cy")[c] * wo.y * wi.y +
-                     l.rgb("cz")[c] * wo.z * wi.z;
+    const double d =
+        l.rgb("cx")[c] * wo.x * wi.x + l.rgb("cy")[c] * wo.y * wi.y + l.rgb("cz")[c] * wo.z * wi.z;
     if (d > 0.0) f += std::pow(d, l.rgb("exponent")[c]);
   }
   return f;
@@ -135,16 +137,16 @@ TEST(Lafortune, DefaultIsADiffusePlusPhongLobe) {
   const Vec3 mirror(-wo.x, -wo.y, wo.z);
   EXPECT_NEAR(m->f(wo, mirror).r, 0.5 / M_PI + std::pow(0.95, 10.0), 1e-5);
   // Documented: about 0.81 of normally incident light is reflected.
-  const double rho = hemisphere_integral(1.0f, 300, [&](const Vec3& wi) {
-    return m->f(Vec3(0, 0, 1), wi).r * wi.z;
-  });
+  const double rho = hemisphere_integral(
+      1.0f, 300, [&](const Vec3& wi) { return m->f(Vec3(0, 0, 1), wi).r * wi.z; });
   EXPECT_NEAR(rho, 0.5 + std::pow(0.95, 10.0) * 2.0 * M_PI / 12.0, 2e-3);
   EXPECT_LT(rho, 1.0);
 }
 
 TEST(Lafortune, MixtureProbabilitiesSumToOneAndKeepACosineShare) {
-  for (const ParamSet& p : {clay(), mixed(), ParamSet(),
-                            lafortune_params({0, 0, 0}, {{{-1, -1, -1}, {1, 1, 1}, {50, 50, 50}}})}) {
+  for (const ParamSet& p :
+       {clay(), mixed(), ParamSet(),
+        lafortune_params({0, 0, 0}, {{{-1, -1, -1}, {1, 1, 1}, {50, 50, 50}}})}) {
     BxDFPtr m = make("lafortune", p);
     const auto& l = static_cast<const Lafortune&>(*m);
     double total = l.diffuse_probability();
@@ -180,13 +182,13 @@ TEST(Lafortune, SamplesAgreeWithPdfAndF) {
 TEST(Lafortune, PdfIntegratesToOneWhenNoLobeIsClipped) {
   BxDFPtr m = make("lafortune");
   // At normal incidence the Phong lobe's axis is the normal: nothing falls below the horizon.
-  const double at_normal = hemisphere_integral(1.0f, 400, [&](const Vec3& wi) {
-    return m->pdf(Vec3(0, 0, 1), wi);
-  });
+  const double at_normal =
+      hemisphere_integral(1.0f, 400, [&](const Vec3& wi) { return m->pdf(Vec3(0, 0, 1), wi); });
   EXPECT_NEAR(at_normal, 1.0, 2e-3);
   // Obliquely part of the lobe is lost below the horizon (those samples are refused), never gained.
   const Vec3 wo = normalize(Vec3(0.9f, 0.0f, -0.3f));
-  const double oblique = hemisphere_integral(-1.0f, 400, [&](const Vec3& wi) { return m->pdf(wo, wi); });
+  const double oblique =
+      hemisphere_integral(-1.0f, 400, [&](const Vec3& wi) { return m->pdf(wo, wi); });
   EXPECT_LT(oblique, 1.0);
   EXPECT_GT(oblique, 0.5);
 }

@@ -17,7 +17,8 @@ double oren_nayar_by_angles(double r, double sigma_deg, const Vec3& wo, const Ve
   const double sigma = sigma_deg * M_PI / 180.0, s2 = sigma * sigma;
   const double a = 1.0 - s2 / (2.0 * (s2 + 0.33));
   const double b = 0.45 * s2 / (s2 + 0.09);
-  const double theta_i = std::acos(static_cast<double>(wi.z)), theta_o = std::acos(static_cast<double>(wo.z));
+  const double theta_i = std::acos(static_cast<double>(wi.z)),
+               theta_o = std::acos(static_cast<double>(wo.z));
   const double phi_i = std::atan2(wi.y, wi.x), phi_o = std::atan2(wo.y, wo.x);
   const double alpha = std::max(theta_i, theta_o), beta = std::min(theta_i, theta_o);
   const double max_cos = std::max(0.0, std::cos(phi_i - phi_o));
@@ -63,15 +64,16 @@ TEST(OrenNayar, BackScatteringIsBrighterThanForwardScattering) {
   const Vec3 forward(-std::sin(0.8f), 0.0f, std::cos(0.8f));  // opposite azimuth
   EXPECT_GT(m->f(wo, back).r, 1.2f * m->f(wo, forward).r);
   // Opposite azimuths: max(0, cos(φi − φo)) = 0, leaving A R/π.
-  const float a = 1.0f - (radians(30.0f) * radians(30.0f)) /
-                             (2.0f * (radians(30.0f) * radians(30.0f) + 0.33f));
+  const float a =
+      1.0f - (radians(30.0f) * radians(30.0f)) / (2.0f * (radians(30.0f) * radians(30.0f) + 0.33f));
   EXPECT_NEAR(m->f(wo, forward).r, a * 0.5 / M_PI, 1e-6);
 }
 
 TEST(OrenNayar, SigmaZeroIsLambertian) {
   BxDFPtr m = make_on(0.6, 0.0);
   PCG32 rng(3);
-  for (int i = 0; i < 20; ++i) EXPECT_NEAR(m->f(random_upper(rng), random_upper(rng)).g, 0.6 / M_PI, 1e-7);
+  for (int i = 0; i < 20; ++i)
+    EXPECT_NEAR(m->f(random_upper(rng), random_upper(rng)).g, 0.6 / M_PI, 1e-7);
 }
 
 TEST(OrenNayar, IsTwoSidedReciprocalAndReflectionOnly) {

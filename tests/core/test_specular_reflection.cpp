@@ -128,9 +128,11 @@ TEST(SpecularReflection, IndicesShowOnlyForTheirFresnelKind) {
 }
 
 TEST(SpecularReflection, RefusesNonPositiveIndicesAndNegativeK) {
-  const std::pair<const char*, Value> bad[] = {
-      {"eta_t", Value(0.0)}, {"eta_i", Value(-1.0)}, {"eta", Value(RGBValue{0.5, 0.0, 0.5})},
-      {"k", Value(RGBValue{1.0, -0.1, 1.0})}, {"fresnel", Value("schlick")}};
+  const std::pair<const char*, Value> bad[] = {{"eta_t", Value(0.0)},
+                                               {"eta_i", Value(-1.0)},
+                                               {"eta", Value(RGBValue{0.5, 0.0, 0.5})},
+                                               {"k", Value(RGBValue{1.0, -0.1, 1.0})},
+                                               {"fresnel", Value("schlick")}};
   for (const auto& [name, value] : bad) {
     ParamSet p;
     p.set(name, value);

@@ -8,7 +8,8 @@ namespace bxdf {
 ModelInfo fresnel_specular_model() {
   ModelInfo m;
   m.name = "fresnel_specular";
-  m.doc = "Smooth glass: reflects with probability F, refracts with probability 1 - F (delta lobes)";
+  m.doc =
+      "Smooth glass: reflects with probability F, refracts with probability 1 - F (delta lobes)";
   m.params = {
       rgb_param("reflectance", {1.0, 1.0, 1.0}, 0.0, 1.0, "Reflectance R, a factor on F"),
       rgb_param("transmittance", {1.0, 1.0, 1.0}, 0.0, 1.0, "Transmittance T, a factor on 1 - F"),

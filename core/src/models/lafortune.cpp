@@ -39,8 +39,9 @@ void check_peak(const LafortuneLobe& l, size_t index) {
     const double c_max = std::max({std::fabs(l.cx[c]), std::fabs(l.cy[c]), std::fabs(l.cz[c])});
     const double peak = std::pow(c_max, static_cast<double>(l.exponent[c]));
     if (!(peak <= Lafortune::kMaxPeak)) {
+      const char channel = "rgb"[c];
       std::ostringstream os;
-      os << "lafortune: lobes[" << index << "] channel " << "rgb"[c]
+      os << "lafortune: lobes[" << index << "] channel " << channel
          << ": peak value max(|cx|, |cy|, |cz|)^exponent = " << c_max << "^" << l.exponent[c]
          << " = " << peak << " is out of range; valid: [0, " << Lafortune::kMaxPeak
          << "] (lower the exponent or the coefficients)";
@@ -63,8 +64,8 @@ Lafortune::Lafortune(const RGB& diffuse, std::vector<LafortuneLobe> lobes)
     l.mean_c = Vec3(shape.cx.average(), shape.cy.average(), shape.cz.average());
     l.mean_exponent = shape.exponent.average();
     lobes_.push_back(l);
-    const double w = (estimated_lobe_albedo(shape, 0) + estimated_lobe_albedo(shape, 1) +
-                      estimated_lobe_albedo(shape, 2)) / 3.0;
+    double w = 0.0;  // the channel average: every channel's lobe deserves samples
+    for (int c = 0; c < 3; ++c) w += estimated_lobe_albedo(shape, c) / 3.0;
     weights.push_back(w);
     lobe_total += w;
   }

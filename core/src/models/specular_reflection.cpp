@@ -23,8 +23,9 @@ ModelInfo specular_reflection_model() {
       rgb_param("reflectance", {1.0, 1.0, 1.0}, 0.0, 1.0, "Reflectance R, a factor on Fresnel"),
       enum_param("fresnel", "dielectric", {"none", "dielectric", "conductor"},
                  "Fresnel term: none (F = 1), dielectric (eta_i, eta_t) or conductor (eta, k)"),
-      only_when(positive_param("eta_i", 1.0, 10.0, "", "Index of refraction outside (incident side)"),
-                "fresnel", {"dielectric"}),
+      only_when(
+          positive_param("eta_i", 1.0, 10.0, "", "Index of refraction outside (incident side)"),
+          "fresnel", {"dielectric"}),
       only_when(positive_param("eta_t", 1.5, 10.0, "", "Index of refraction of the dielectric"),
                 "fresnel", {"dielectric"}),
       // Defaults: the seed's gold (eta 0.370, k 2.820) as a grey.

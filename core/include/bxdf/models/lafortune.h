@@ -79,8 +79,8 @@ class Lafortune final : public BxDFImpl<Lafortune> {
  private:
   struct Lobe {
     LafortuneLobe shape;
-    Vec3 mean_c;               // C̄: the channel averages of cx, cy, cz
-    float mean_exponent = 0;   // n̄
+    Vec3 mean_c;              // C̄: the channel averages of cx, cy, cz
+    float mean_exponent = 0;  // n̄
     // This lobe is chosen for u.x in [cdf_lo, cdf_hi); probability = cdf_hi − cdf_lo.
     float cdf_lo = 0, cdf_hi = 0, probability = 0;
   };
