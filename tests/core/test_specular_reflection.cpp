@@ -105,6 +105,12 @@ TEST(SpecularReflection, GrazingGivesNoSample) {
   BxDFPtr m = make("specular_reflection");
   EXPECT_FALSE(m->sample_f(Vec3(1, 0, 0), Point2(0.5f, 0.5f)).valid());
   EXPECT_FALSE(m->sample_f(Vec3(0, 0, 0), Point2(0.5f, 0.5f)).valid());
+  // The kernel itself refuses a cosine so small that F R/|cos θi| would overflow.
+  const SpecularReflection kernel(RGB(1.0f), Fresnel::none());
+  EXPECT_FALSE(kernel.sample(Vec3(1.0f, 0.0f, 1e-40f), Point2(0.5f, 0.5f)).valid());
+  const BxDFSample near = kernel.sample(Vec3(1.0f, 0.0f, 1e-20f), Point2(0.5f, 0.5f));
+  ASSERT_TRUE(near.valid());
+  EXPECT_NEAR(near.f.r, 1e20f, 1e14f);
 }
 
 TEST(SpecularReflection, IndicesShowOnlyForTheirFresnelKind) {

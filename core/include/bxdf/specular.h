@@ -7,6 +7,10 @@
 
 namespace bxdf {
 
+// Below this |cos θ| a delta lobe's weight (∝ 1/|cos θ|) could overflow a float, and the
+// direction is grazing anyway: the delta models give no sample there.
+constexpr float kMinSpecularCos = 1e-30f;
+
 // Mirror direction about the normal (0, 0, 1) in the local frame.
 inline Vec3 specular_reflect(const Vec3& wo) { return {-wo.x, -wo.y, wo.z}; }
 
@@ -15,15 +19,16 @@ inline Vec3 specular_reflect(const Vec3& wo) { return {-wo.x, -wo.y, wo.z}; }
 // wi's side: L/η² is conserved along a ray that crosses the interface, because the beam's
 // solid angle is squeezed or widened by (η_i/η_o)², so radiance that passes from wi's medium
 // into wo's medium is scaled by (η_o/η_i)² (pbrt-v3's TransportMode::Radiance).
-// Returns false on total internal reflection or at exactly grazing wo.
+// Returns false on total internal reflection or when wo or wi is grazing (kMinSpecularCos).
 inline bool specular_refract(const Vec3& wo, float eta_i, float eta_t, Vec3* wi,
                              float* radiance_scale) {
-  if (wo.z == 0.0f) return false;
+  if (std::fabs(wo.z) < kMinSpecularCos) return false;
   const bool entering = wo.z > 0.0f;
   const float eta_wo_side = entering ? eta_i : eta_t;
   const float eta_wi_side = entering ? eta_t : eta_i;
   const Vec3 n(0.0f, 0.0f, entering ? 1.0f : -1.0f);
-  if (!refract(wo, n, eta_wo_side / eta_wi_side, wi)) return false;
+  if (!refract(wo, n, eta_wo_side / eta_wi_side, wi) || std::fabs(wi->z) < kMinSpecularCos)
+    return false;
   const float ratio = eta_wo_side / eta_wi_side;
   *radiance_scale = ratio * ratio;
   return true;

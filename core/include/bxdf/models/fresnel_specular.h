@@ -23,7 +23,7 @@ class FresnelSpecular final : public BxDFImpl<FresnelSpecular> {
   RGB eval(const Vec3&, const Vec3&) const { return RGB(0.0f); }
   BxDFSample sample(const Vec3& wo, Point2 u) const {
     BxDFSample s;
-    if (wo.z == 0.0f) return s;
+    if (abs_cos_theta(wo) < kMinSpecularCos) return s;  // grazing: 1/|cos θi| overflows
     // Signed cos θo: below the surface the light is inside the glass and the indices swap.
     const float fresnel = fresnel_dielectric(cos_theta(wo), eta_i_, eta_t_);
     if (u.x < fresnel) {
@@ -35,7 +35,7 @@ class FresnelSpecular final : public BxDFImpl<FresnelSpecular> {
     }
     float radiance_scale = 1.0f;
     // F < 1 here, so refraction exists; the check only guards rounding at the critical angle.
-    if (!specular_refract(wo, eta_i_, eta_t_, &s.wi, &radiance_scale) || s.wi.z == 0.0f) return s;
+    if (!specular_refract(wo, eta_i_, eta_t_, &s.wi, &radiance_scale)) return s;
     s.pdf = 1.0f - fresnel;
     s.f = t_ * ((1.0f - fresnel) * radiance_scale / abs_cos_theta(s.wi));
     s.flags = kTransmission | kSpecular;

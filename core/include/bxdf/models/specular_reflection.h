@@ -18,7 +18,7 @@ class SpecularReflection final : public BxDFImpl<SpecularReflection> {
   RGB eval(const Vec3&, const Vec3&) const { return RGB(0.0f); }
   BxDFSample sample(const Vec3& wo, Point2) const {
     BxDFSample s;
-    if (wo.z == 0.0f) return s;  // grazing: the weight 1/|cos θi| has no finite value
+    if (abs_cos_theta(wo) < kMinSpecularCos) return s;  // grazing: 1/|cos θi| overflows
     s.wi = specular_reflect(wo);
     s.pdf = 1.0f;
     // |cos θo|: reflection models are two-sided, so a dielectric coat reflects the same from

@@ -19,7 +19,7 @@ class SpecularTransmission final : public BxDFImpl<SpecularTransmission> {
   BxDFSample sample(const Vec3& wo, Point2) const {
     BxDFSample s;
     float radiance_scale = 1.0f;
-    if (!specular_refract(wo, eta_i_, eta_t_, &s.wi, &radiance_scale) || s.wi.z == 0.0f) return s;
+    if (!specular_refract(wo, eta_i_, eta_t_, &s.wi, &radiance_scale)) return s;
     // F is the same seen from either end of the refracted pair; pbrt evaluates it at cos θi.
     const float fresnel = fresnel_dielectric(cos_theta(s.wi), eta_i_, eta_t_);
     s.pdf = 1.0f;
