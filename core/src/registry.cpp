@@ -8,6 +8,9 @@ std::vector<ModelInfo> builtin_models() {
   // One line per model; each declaration lives in the model's own source file.
   return {
       lambertian_model(),
+      microfacet_model(),
+      microfacet_transmission_model(),
+      cycles_glossy_model(),
   };
 }
 
