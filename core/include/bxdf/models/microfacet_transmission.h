@@ -89,7 +89,11 @@ class MicrofacetTransmission final : public BxDFImpl<MicrofacetTransmission<Dist
     const float denom = s.eta_o * wo_h + s.eta_i * wi_h;
     const float g = microfacet::smith_G_correlated(distribution_.lambda(s.wo),
                                                    distribution_.lambda(s.wi));
-    const float fr = fresnel_dielectric(wo_h, s.eta_o, s.eta_i);
+    // F is the same seen from either side (Stokes); evaluating it from the side of lower
+    // index avoids cos θt = sqrt(1 − sin²θt) near the critical angle, where float loses
+    // digits, and keeps f(ωo, ωi) and f(ωi, ωo) computed alike.
+    const float fr = s.eta_o <= s.eta_i ? fresnel_dielectric(wo_h, s.eta_o, s.eta_i)
+                                        : fresnel_dielectric(-wi_h, s.eta_i, s.eta_o);
     const float v = (1.0f - fr) * d * g * std::fabs(wi_h * wo_h) * s.eta_o * s.eta_o /
                     (std::fabs(s.wi.z * s.wo.z) * denom * denom);
     return t_ * v;
