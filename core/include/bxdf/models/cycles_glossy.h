@@ -53,8 +53,9 @@ class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
       if (!(wo_h > 0.0f)) return s;
       wi = reflect(wo, wh);
       if (!(wi.z > 0.0f)) return s;
-      s.pdf = distribution_.pdf_wh(wo, wh) / (4.0f * wo_h);
-      s.f = f_upper(wo, wi, wh);
+      // f and pdf from (wo, wi) exactly as eval() and density() compute them (see microfacet.h).
+      s.pdf = density(wo, wi);
+      s.f = eval(wo, wi);
       s.flags = kReflection | kGlossy;
     }
     if (below) wi.z = -wi.z;

@@ -48,8 +48,11 @@ class TorranceSparrow final : public BxDFImpl<TorranceSparrow<Distribution>> {
     if (!(wo_h > 0.0f)) return s;  // a facet that faces away from wo: no sample
     Vec3 wi = reflect(wo, wh);
     if (!(wi.z > 0.0f)) return s;  // reflected below the surface: no sample
-    s.pdf = distribution_.pdf_wh(wo, wh) / (4.0f * wo_h);
-    s.f = f_upper(wo, wi, wh);
+    // f and pdf from the half vector of (wo, wi) as eval() and density() compute it, not the
+    // sampled one: near grazing normalize(wo + wi) is ill-conditioned in float, and a sample
+    // must report the same pdf as pdf(wo, wi) (pbrt-v3 does the same).
+    s.pdf = density(wo, wi);
+    s.f = eval(wo, wi);
     if (below) wi.z = -wi.z;
     s.wi = wi;
     s.flags = kReflection | kGlossy;

@@ -41,9 +41,13 @@ class MicrofacetTransmission final : public BxDFImpl<MicrofacetTransmission<Dist
     const Vec3 wh = distribution_.sample_wh(side.wo, u);
     if (!(dot(side.wo, wh) > 0.0f)) return s;
     if (!refract(side.wo, wh, side.eta_o / side.eta_i, &side.wi)) return s;  // total reflection
-    if (!(side.wi.z < 0.0f)) return s;
-    s.pdf = pdf_canonical(side, wh);
-    s.f = f_canonical(side, wh);
+    // f and pdf from the half vector of (wo, wi) as eval() and density() compute it, not the
+    // sampled one, so that the sample reports exactly pdf(wo, wi) even where the generalised
+    // half vector is ill-conditioned in float (near grazing).
+    Vec3 h;
+    if (!half_vector(side, &h)) return s;
+    s.pdf = pdf_canonical(side, h);
+    s.f = f_canonical(side, h);
     s.wi = side.mirrored ? Vec3(side.wi.x, side.wi.y, -side.wi.z) : side.wi;
     s.flags = kTransmission | kGlossy;
     return s;
