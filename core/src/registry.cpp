@@ -13,8 +13,11 @@ std::vector<ModelInfo> builtin_models() {
       specular_reflection_model(),
       specular_transmission_model(),
       fresnel_specular_model(),
+      microfacet_model(),
+      microfacet_transmission_model(),
       lafortune_model(),
       cycles_oren_nayar_model(),
+      cycles_glossy_model(),
   };
 }
 

@@ -1,0 +1,97 @@
+// Cycles 3.4's Glossy / Anisotropic BSDF (GGX or Beckmann), so that a render can match Cycles
+// exactly: F = 1 (colour is a plain factor), separable Smith G = G1(ωo) G1(ωi) (GGX's exact G1,
+// Beckmann's rational fit), f = colour · D G / (4 cos θo cos θi).
+// Cycles treats αx·αy <= 1e-7 as singular (its kernel returns 0 from eval and a mirror from
+// sample; the node switches to Sharp already at roughness <= 1e-4); this model does the
+// same: it becomes a delta mirror with weight = colour (f = colour/|cos θi|, pdf 1 when
+// sampled; f = pdf = 0 otherwise), and its flags say specular.
+// Two-sided like Cycles, which turns the shading normal towards the viewer.
+#pragma once
+
+#include "bxdf/bxdf.h"
+#include "bxdf/microfacet/common.h"
+
+namespace bxdf {
+
+// Cycles' singular threshold on αx·αy (bsdf_microfacet.h).
+constexpr float kCyclesSingularAlpha2 = 1e-7f;
+
+template <class Distribution>
+class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
+ public:
+  CyclesGlossy(const RGB& color, const Distribution& distribution, bool mirror)
+      : BxDFImpl<CyclesGlossy<Distribution>>(kReflection | (mirror ? kSpecular : kGlossy)),
+        color_(color),
+        distribution_(distribution),
+        mirror_(mirror) {}
+
+  RGB eval(Vec3 wo, Vec3 wi) const {
+    if (mirror_ || !same_hemisphere(wo, wi)) return RGB(0.0f);
+    if (wo.z < 0.0f) {
+      wo.z = -wo.z;
+      wi.z = -wi.z;
+    }
+    Vec3 wh = wo + wi;
+    if (!normalize_direction(wh)) return RGB(0.0f);
+    return f_upper(wo, wi, wh);
+  }
+
+  BxDFSample sample(Vec3 wo, Point2 u) const {
+    BxDFSample s;
+    if (wo.z == 0.0f) return s;
+    const bool below = wo.z < 0.0f;
+    if (below) wo.z = -wo.z;
+    Vec3 wi;
+    if (mirror_) {
+      wi = Vec3(-wo.x, -wo.y, wo.z);
+      s.pdf = 1.0f;
+      s.f = color_ / wi.z;
+      s.flags = kReflection | kSpecular;
+    } else {
+      const Vec3 wh = distribution_.sample_wh(wo, u);
+      const float wo_h = dot(wo, wh);
+      if (!(wo_h > 0.0f)) return s;
+      wi = reflect(wo, wh);
+      if (!(wi.z > 0.0f)) return s;
+      // f and pdf from (wo, wi) exactly as eval() and density() compute them (see microfacet.h).
+      s.pdf = density(wo, wi);
+      s.f = eval(wo, wi);
+      s.flags = kReflection | kGlossy;
+    }
+    if (below) wi.z = -wi.z;
+    s.wi = wi;
+    return s;
+  }
+
+  float density(Vec3 wo, Vec3 wi) const {
+    if (mirror_ || !same_hemisphere(wo, wi)) return 0.0f;
+    if (wo.z < 0.0f) {
+      wo.z = -wo.z;
+      wi.z = -wi.z;
+    }
+    Vec3 wh = wo + wi;
+    if (!normalize_direction(wh)) return 0.0f;
+    const float wo_h = dot(wo, wh);
+    if (!(wo_h > 0.0f)) return 0.0f;
+    return distribution_.pdf_wh(wo, wh) / (4.0f * wo_h);
+  }
+
+  const Distribution& distribution() const { return distribution_; }
+  bool is_mirror() const { return mirror_; }
+
+ private:
+  RGB f_upper(const Vec3& wo, const Vec3& wi, const Vec3& wh) const {
+    const float cos_o = wo.z, cos_i = wi.z;
+    if (!(cos_o > 0.0f) || !(cos_i > 0.0f)) return RGB(0.0f);
+    const float d = distribution_.D(wh);
+    if (d == 0.0f) return RGB(0.0f);
+    const float g = distribution_.G1(wo) * distribution_.G1(wi);  // separable, as Cycles 3.4
+    return color_ * (d * g / (4.0f * cos_o * cos_i));
+  }
+
+  RGB color_;
+  Distribution distribution_;
+  bool mirror_;
+};
+
+}  // namespace bxdf
