@@ -17,7 +17,7 @@ namespace bxdf_test {
 constexpr double kPiD = 3.14159265358979323846;
 
 struct HemisphereQuadrature {
-  double k = 1.0;                                          // azimuthal width ratio
+  double k = 1.0;                                                        // azimuthal width ratio
   std::function<double(double phi)> width = [](double) { return 1.0; };  // a(φ) in tan θ
   int n_tau = 128;
   int n_psi = 512;
@@ -34,7 +34,7 @@ struct HemisphereQuadrature {
       double inner = 0.0;
       for (int j = 0; j < n_psi; ++j) {
         const double psi = (j + 0.5) * d_psi;
-        const double t = a * std::tan(psi);                    // tan θ
+        const double t = a * std::tan(psi);  // tan θ
         const double dt_dpsi = a / (std::cos(psi) * std::cos(psi));
         const double cos_t = 1.0 / std::sqrt(1.0 + t * t);
         const double sin_t = t * cos_t;

@@ -38,8 +38,9 @@ struct CyclesReference {
   double G1(double cos_n, double cos_phi, double sin_phi) const {
     // α projected on the azimuth of the direction, then GGX's 2/(1 + sqrt(1 + α²tan²)) or
     // Beckmann's rational fit in a = 1/(α tan θ).
-    double alpha2 = (cos_phi * cos_phi * alpha_x * alpha_x + sin_phi * sin_phi * alpha_y * alpha_y) /
-                    (cos_phi * cos_phi + sin_phi * sin_phi);
+    double alpha2 =
+        (cos_phi * cos_phi * alpha_x * alpha_x + sin_phi * sin_phi * alpha_y * alpha_y) /
+        (cos_phi * cos_phi + sin_phi * sin_phi);
     if (alpha_x == alpha_y) alpha2 = alpha_x * alpha_y;
     const double tan2 = (1 - cos_n * cos_n) / (cos_n * cos_n);
     if (ggx) return 2 / (1 + std::sqrt(1 + alpha2 * tan2));
@@ -101,8 +102,8 @@ TEST(CyclesGlossy, MatchesCyclesFormula) {
   for (const std::string distribution : {"ggx", "beckmann"}) {
     for (const double roughness : {0.2, 0.5, 0.9, 1.0}) {
       for (const double anisotropy : {0.0, 0.5, -0.7, 1.0}) {
-        SCOPED_TRACE(testing::Message() << distribution << " r=" << roughness
-                                        << " a=" << anisotropy);
+        SCOPED_TRACE(testing::Message()
+                     << distribution << " r=" << roughness << " a=" << anisotropy);
         const CyclesReference ref(distribution, roughness, anisotropy);
         const BxDFPtr m = make_glossy(distribution, roughness, anisotropy);
         int nonzero = 0;

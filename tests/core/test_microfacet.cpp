@@ -94,8 +94,8 @@ struct Reference {
   }
   double f(const V& wo, const V& wi, double R) const {
     const V wh = unit({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
-    const double G = shadowing == "v_groove" ? seed_v_groove(wo, wi, wh)
-                                             : 1 / (1 + lambda(wo) + lambda(wi));
+    const double G =
+        shadowing == "v_groove" ? seed_v_groove(wo, wi, wh) : 1 / (1 + lambda(wo) + lambda(wi));
     return R * D(wh) * G * F(dot(wi, wh)) / (4 * wo.z * wi.z);
   }
   ParamSet params(double R) const {

@@ -27,8 +27,8 @@ const std::vector<AlphaCase> kAlphaCases = {{0.3, 0.3},   {0.05, 0.5}, {1.0, 0.0
 struct ExponentCase {
   double ex, ey;
 };
-const std::vector<ExponentCase> kExponentCases = {{0, 0},      {1, 1},   {20, 20},   {10, 100},
-                                                  {1000, 1},   {0, 1e4}, {1e4, 1e4}, {1e6, 1e6}};
+const std::vector<ExponentCase> kExponentCases = {{0, 0},    {1, 1},   {20, 20},   {10, 100},
+                                                  {1000, 1}, {0, 1e4}, {1e4, 1e4}, {1e6, 1e6}};
 
 template <class Dist>
 double normalisation(const Dist& d, const bxdf_test::HemisphereQuadrature& q) {
@@ -122,7 +122,8 @@ TEST(MicrofacetDistributions, GGXLambdaValues) {
   EXPECT_EQ(GGX(0.5f, 0.5f).lambda(Vec3(0, 0, 1)), 0.0f);
   // Anisotropic: α projected on the azimuth, α(φ)² = cos²φ αx² + sin²φ αy².
   const double theta = 1.2, phi = 0.4, ax = 0.1, ay = 0.8;
-  const double a2 = std::cos(phi) * std::cos(phi) * ax * ax + std::sin(phi) * std::sin(phi) * ay * ay;
+  const double a2 =
+      std::cos(phi) * std::cos(phi) * ax * ax + std::sin(phi) * std::sin(phi) * ay * ay;
   const double t2 = std::tan(theta) * std::tan(theta);
   EXPECT_NEAR(GGX(float(ax), float(ay)).lambda(direction(theta, phi)),
               0.5 * (-1.0 + std::sqrt(1.0 + a2 * t2)), 1e-5);
@@ -148,8 +149,7 @@ TEST(MicrofacetDistributions, BeckmannLambdaIsTheRationalFit) {
     const double exact = aa >= 1.6 ? 0.0 : beckmann_lambda_exact(aa);
     const float fit_value = Beckmann(float(alpha), float(alpha)).lambda(direction(theta, 1.0));
     EXPECT_NEAR(fit_value, exact, 3.5e-3 + 5e-3 * exact) << theta;
-    EXPECT_GT(fit_value, -1e-4)
-        << theta;
+    EXPECT_GT(fit_value, -1e-4) << theta;
   }
   // Anisotropic: the isotropic Λ at the projected α.
   const double ax = 0.2, ay = 0.6, phi = 1.1, theta = 1.3;
@@ -163,9 +163,9 @@ TEST(MicrofacetDistributions, BlinnAndAshikhminShirleyUseBeckmannLambdaAtTheMapp
   const Vec3 w = direction(1.2, 0.5);
   EXPECT_FLOAT_EQ(Blinn(float(e)).lambda(w), Beckmann(float(alpha), float(alpha)).lambda(w));
   const double ex = 4.0, ey = 200.0;
-  EXPECT_FLOAT_EQ(AshikhminShirley(float(ex), float(ey)).lambda(w),
-                  Beckmann(float(std::sqrt(2.0 / (ex + 2.0))), float(std::sqrt(2.0 / (ey + 2.0))))
-                      .lambda(w));
+  EXPECT_FLOAT_EQ(
+      AshikhminShirley(float(ex), float(ey)).lambda(w),
+      Beckmann(float(std::sqrt(2.0 / (ex + 2.0))), float(std::sqrt(2.0 / (ey + 2.0)))).lambda(w));
 }
 
 TEST(MicrofacetDistributions, HalfVectorDensitiesIntegrateToOne) {

@@ -38,8 +38,10 @@ struct Case {
   std::string distribution;
   double ax, ay, eta_i, eta_t;
 };
-const Case kCases[] = {{"ggx", 0.3, 0.3, 1.0, 1.5},     {"ggx", 0.1, 0.6, 1.0, 1.33},
-                       {"beckmann", 0.4, 0.4, 1.0, 1.5}, {"beckmann", 0.5, 0.15, 1.5, 1.0},
+const Case kCases[] = {{"ggx", 0.3, 0.3, 1.0, 1.5},
+                       {"ggx", 0.1, 0.6, 1.0, 1.33},
+                       {"beckmann", 0.4, 0.4, 1.0, 1.5},
+                       {"beckmann", 0.5, 0.15, 1.5, 1.0},
                        {"ggx", 0.25, 0.25, 2.4, 1.2}};
 
 // Walter et al. 2007, eq. 21 with the radiance factor ηo², GGX D and height-correlated Smith G,
@@ -140,8 +142,8 @@ TEST(MicrofacetTransmission, SampledDirectionsRefract) {
       const float sin_i = std::sqrt(std::max(0.0f, 1 - cos_i * cos_i));
       EXPECT_NEAR(eta_o * sin_o, eta_i * sin_i, 2e-3f);
       // ... and cos θ about m follows from Snell too (the other root would be a reflection).
-      EXPECT_NEAR(std::fabs(cos_i), std::sqrt(std::max(0.0f, 1 - (eta_o / eta_i) * (eta_o / eta_i) *
-                                                             sin_o * sin_o)),
+      EXPECT_NEAR(std::fabs(cos_i),
+                  std::sqrt(std::max(0.0f, 1 - (eta_o / eta_i) * (eta_o / eta_i) * sin_o * sin_o)),
                   2e-3f);
       // The returned pdf and f are those of pdf() and f() at the sampled direction.
       EXPECT_NEAR(s.pdf, m->pdf(wo, s.wi), 1e-3f * s.pdf);

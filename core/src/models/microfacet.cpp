@@ -22,8 +22,8 @@ Fresnel fresnel_from(const ParamSet& p) {
 
 template <class Distribution>
 std::unique_ptr<BxDF> make_torrance_sparrow(const ParamSet& p, const Distribution& d) {
-  const MicrofacetShadowing g = p.string("shadowing") == "smith" ? MicrofacetShadowing::Smith
-                                                                 : MicrofacetShadowing::VGroove;
+  const MicrofacetShadowing g =
+      p.string("shadowing") == "smith" ? MicrofacetShadowing::Smith : MicrofacetShadowing::VGroove;
   return std::make_unique<TorranceSparrow<Distribution>>(to_rgb(p.rgb("reflectance")), d, g,
                                                          fresnel_from(p));
 }
@@ -49,12 +49,14 @@ ModelInfo microfacet_model() {
       only_when(float_param("exponent_y", 100.0, 0.0, 1e6, "",
                             "Ashikhmin-Shirley exponent along the bitangent y"),
                 "distribution", {"ashikhmin_shirley"}),
-      only_when(positive_param("alpha_x", 0.3, 10.0, "",
-                               "Roughness alpha along the tangent x (values below 1e-4 act as 1e-4)"),
-                "distribution", alpha_kinds),
-      only_when(positive_param("alpha_y", 0.3, 10.0, "",
-                               "Roughness alpha along the bitangent y (values below 1e-4 act as 1e-4)"),
-                "distribution", alpha_kinds),
+      only_when(
+          positive_param("alpha_x", 0.3, 10.0, "",
+                         "Roughness alpha along the tangent x (values below 1e-4 act as 1e-4)"),
+          "distribution", alpha_kinds),
+      only_when(
+          positive_param("alpha_y", 0.3, 10.0, "",
+                         "Roughness alpha along the bitangent y (values below 1e-4 act as 1e-4)"),
+          "distribution", alpha_kinds),
       enum_param("shadowing", "smith", {"v_groove", "smith"},
                  "Shadowing-masking G: the seed's V-groove, or height-correlated Smith"),
       enum_param("fresnel", "none", {"none", "dielectric", "conductor"},

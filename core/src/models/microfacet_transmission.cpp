@@ -27,10 +27,10 @@ ModelInfo microfacet_transmission_model() {
     // Equal indices make the interface invisible: all light goes straight through, a delta
     // this glossy lobe cannot represent (f would be 0 everywhere).
     if (eta_i == eta_t)
-      throw ParameterError("microfacet_transmission: parameter 'eta_t' = " +
-                           Value(p.number("eta_t")).to_string() + " equals 'eta_i' = " +
-                           Value(p.number("eta_i")).to_string() +
-                           "; valid: (0, 10] and different from eta_i");
+      throw ParameterError(
+          "microfacet_transmission: parameter 'eta_t' = " + Value(p.number("eta_t")).to_string() +
+          " equals 'eta_i' = " + Value(p.number("eta_i")).to_string() +
+          "; valid: (0, 10] and different from eta_i");
     const RGB t = to_rgb(p.rgb("transmittance"));
     const float ax = static_cast<float>(p.number("alpha_x"));
     const float ay = static_cast<float>(p.number("alpha_y"));

@@ -67,8 +67,7 @@ struct AshikhminShirley {
     // u = 1 (at a quadrant boundary) must give π/2, not atan(tan(float(π/2))) < 0.
     if (u >= 1.0f) return kPiOver2;
     if (exponent_x == exponent_y) return kPiOver2 * u;
-    return std::atan(std::sqrt((exponent_x + 1.0f) / (exponent_y + 1.0f)) *
-                     std::tan(kPiOver2 * u));
+    return std::atan(std::sqrt((exponent_x + 1.0f) / (exponent_y + 1.0f)) * std::tan(kPiOver2 * u));
   }
 };
 

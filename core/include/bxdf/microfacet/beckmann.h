@@ -35,8 +35,8 @@ struct Beckmann {
     const float phi = std::atan2(alpha_y * std::sin(t), alpha_x * std::cos(t));
     const float cos_phi = std::cos(phi), sin_phi = std::sin(phi);
     // θ: tan²θ = −α(φ)² ln(1 − u1) with 1/α(φ)² = cos²φ/αx² + sin²φ/αy².
-    const float inv_alpha2 = cos_phi * cos_phi / (alpha_x * alpha_x) +
-                             sin_phi * sin_phi / (alpha_y * alpha_y);
+    const float inv_alpha2 =
+        cos_phi * cos_phi / (alpha_x * alpha_x) + sin_phi * sin_phi / (alpha_y * alpha_y);
     const float tan2 = -std::log1p(-u.x) / inv_alpha2;
     const float cos_t = 1.0f / std::sqrt(1.0f + tan2);
     const float sin_t = safe_sqrt(1.0f - cos_t * cos_t);

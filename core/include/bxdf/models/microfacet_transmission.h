@@ -91,8 +91,8 @@ class MicrofacetTransmission final : public BxDFImpl<MicrofacetTransmission<Dist
     if (d == 0.0f) return RGB(0.0f);
     const float wo_h = dot(s.wo, wh), wi_h = dot(s.wi, wh);
     const float denom = s.eta_o * wo_h + s.eta_i * wi_h;
-    const float g = microfacet::smith_G_correlated(distribution_.lambda(s.wo),
-                                                   distribution_.lambda(s.wi));
+    const float g =
+        microfacet::smith_G_correlated(distribution_.lambda(s.wo), distribution_.lambda(s.wi));
     // F is the same seen from either side (Stokes); evaluating it from the side of lower
     // index avoids cos θt = sqrt(1 − sin²θt) near the critical angle, where float loses
     // digits, and keeps f(ωo, ωi) and f(ωi, ωo) computed alike.
@@ -107,8 +107,7 @@ class MicrofacetTransmission final : public BxDFImpl<MicrofacetTransmission<Dist
   float pdf_canonical(const Side& s, const Vec3& wh) const {
     const float wo_h = dot(s.wo, wh), wi_h = dot(s.wi, wh);
     const float denom = s.eta_o * wo_h + s.eta_i * wi_h;
-    return distribution_.pdf_wh(s.wo, wh) * s.eta_i * s.eta_i * std::fabs(wi_h) /
-           (denom * denom);
+    return distribution_.pdf_wh(s.wo, wh) * s.eta_i * s.eta_i * std::fabs(wi_h) / (denom * denom);
   }
 
   RGB t_;
