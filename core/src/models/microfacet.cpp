@@ -30,6 +30,14 @@ std::unique_ptr<BxDF> make_torrance_sparrow(const ParamSet& p, const Distributio
 
 float number(const ParamSet& p, const char* name) { return static_cast<float>(p.number(name)); }
 
+// A conductor's η is > 0, as specular_reflection declares it.
+ParamSpec conductor_eta_param() {
+  ParamSpec s = rgb_param("eta", {0.37, 0.37, 0.37}, 0.0, 10.0,
+                          "Conductor index of refraction eta (default: the seed's gold)");
+  s.min_exclusive = true;
+  return s;
+}
+
 }  // namespace
 
 ModelInfo microfacet_model() {
@@ -65,9 +73,7 @@ ModelInfo microfacet_model() {
                 "fresnel", {"dielectric"}),
       only_when(positive_param("eta_t", 1.5, 10.0, "", "Index of refraction inside (dielectric)"),
                 "fresnel", {"dielectric"}),
-      only_when(rgb_param("eta", {0.37, 0.37, 0.37}, 0.0, 10.0,
-                          "Conductor index of refraction eta (default: the seed's gold)"),
-                "fresnel", {"conductor"}),
+      only_when(conductor_eta_param(), "fresnel", {"conductor"}),
       only_when(rgb_param("k", {2.82, 2.82, 2.82}, 0.0, 20.0,
                           "Conductor absorption coefficient k (default: the seed's gold)"),
                 "fresnel", {"conductor"}),
