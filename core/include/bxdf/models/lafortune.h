@@ -5,8 +5,10 @@
 //
 // Sampling: a mixture of cosine-weighted sampling (the diffuse part) and one cosine-power lobe
 // per Lafortune lobe, of the channel-averaged exponent n̄, about normalize(C̄ ⊙ ωo) (C̄ the
-// channel-averaged coefficients), reflected into ωo's hemisphere. The mixture weights are fixed
-// at construction; pdf is the mixture's density, so sample_f and pdf agree.
+// channel-averaged coefficients), reflected into ωo's hemisphere. A lobe sample that falls
+// below the horizon is folded back (z mirrored), so no sample is wasted and each lobe's density
+// is the sum of its cosine-power density at ωi and at ωi's mirror image. The mixture weights
+// are fixed at construction; pdf is the mixture's density, so sample_f and pdf agree.
 #pragma once
 
 #include <vector>
@@ -56,7 +58,7 @@ class Lafortune final : public BxDFImpl<Lafortune> {
       coordinate_system(axis, &t1, &t2);
       const Vec3 local = sample_cosine_power(Point2(u0, u.y), l.mean_exponent);
       s.wi = t1 * local.x + t2 * local.y + axis * local.z;
-      if (!same_hemisphere(wo, s.wi)) return BxDFSample();  // below the horizon: f = 0
+      s.wi.z = wo.z > 0.0f ? std::fabs(s.wi.z) : -std::fabs(s.wi.z);  // fold into wo's side
       s.flags = kReflection | kGlossy;
     }
     s.pdf = density(wo, s.wi);
@@ -67,8 +69,12 @@ class Lafortune final : public BxDFImpl<Lafortune> {
   float density(const Vec3& wo, const Vec3& wi) const {
     if (!same_hemisphere(wo, wi)) return 0.0f;
     float pdf = diffuse_probability_ * cosine_hemisphere_pdf(std::fabs(wi.z));
-    for (const Lobe& l : lobes_)
-      pdf += l.probability * cosine_power_pdf(dot(sampling_axis(l, wo), wi), l.mean_exponent);
+    const Vec3 wi_folded(wi.x, wi.y, -wi.z);  // where a folded sample came from
+    for (const Lobe& l : lobes_) {
+      const Vec3 axis = sampling_axis(l, wo);
+      pdf += l.probability * (cosine_power_pdf(dot(axis, wi), l.mean_exponent) +
+                              cosine_power_pdf(dot(axis, wi_folded), l.mean_exponent));
+    }
     return pdf;
   }
 
