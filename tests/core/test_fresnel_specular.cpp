@@ -59,7 +59,7 @@ TEST(FresnelSpecular, ChoosesReflectionWithProbabilityF) {
       EXPECT_NEAR(s.wi.z, wo.z, 1e-6);
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(s.f[c], fresnel * kR[c] / std::cos(theta), 2e-6 * s.f[c] + 1e-7);
-      // Just above F: refraction by Snell's law, weighted T (1 − F)(η_o/η_i)²/|cos θi|.
+      // Just above F: refraction by Snell's law, weighted T (1 − F)(η_wo/η_wi)²/|cos θi|.
       s = m->sample_f(wo, Point2(static_cast<float>(fresnel) * 1.001f + 1e-6f, 0.5f));
       ASSERT_TRUE(s.valid());
       EXPECT_EQ(s.flags, static_cast<uint32_t>(kTransmission | kSpecular));
@@ -109,7 +109,7 @@ TEST(FresnelSpecular, TotalInternalReflectionAlwaysReflects) {
 }
 
 TEST(FresnelSpecular, ExpectedWeightIsFRPlusOneMinusFScaledT) {
-  // E[f |cos θi| / pdf] over u = F R + (1 − F) T (η_o/η_i)²: each branch's weight is exact, so
+  // E[f |cos θi| / pdf] over u = F R + (1 − F) T (η_wo/η_wi)²: each branch's weight is exact, so
   // the stratified estimate only carries the noise of the one column of strata that straddles F.
   BxDFPtr m = make_glass(1.0, 1.0);  // matched indices: F = 0, everything passes
   EXPECT_NEAR(m->rho_hd(direction(0.5, 0.0, 1.0), 256).r, kT[0], 1e-6);

@@ -1,4 +1,4 @@
-// specular_transmission: Snell's-law directions, the weight T (1 − F)(η_o/η_i)²/|cos θi| on
+// specular_transmission: Snell's-law directions, the weight T (1 − F)(η_wo/η_wi)²/|cos θi| on
 // both sides of the interface, no sample under total internal reflection. F, directions and
 // weights are computed independently in the test.
 #include <gtest/gtest.h>

@@ -15,10 +15,11 @@ constexpr float kMinSpecularCos = 1e-30f;
 inline Vec3 specular_reflect(const Vec3& wo) { return {-wo.x, -wo.y, wo.z}; }
 
 // Refraction of wo through the interface (wo on either side). On success writes wi (on the
-// other side) and radiance_scale = (η_o/η_i)², where η_o is the index on wo's side and η_i on
-// wi's side: L/η² is conserved along a ray that crosses the interface, because the beam's
-// solid angle is squeezed or widened by (η_i/η_o)², so radiance that passes from wi's medium
-// into wo's medium is scaled by (η_o/η_i)² (pbrt-v3's TransportMode::Radiance).
+// other side) and radiance_scale = (η_wo/η_wi)², the indices on wo's and on wi's side. Why the
+// factor: Snell's law keeps η² cos θ dω invariant across the interface, so radiance
+// (flux per area per projected solid angle) is not conserved but L/η² is; light arriving from
+// wi's medium leaves into wo's medium with its radiance scaled by (η_wo/η_wi)² (pbrt-v3's
+// TransportMode::Radiance; importance transport would omit it).
 // Returns false on total internal reflection or when wo or wi is grazing (kMinSpecularCos).
 inline bool specular_refract(const Vec3& wo, float eta_i, float eta_t, Vec3* wi,
                              float* radiance_scale) {

@@ -1,7 +1,7 @@
 // Smooth glass (pbrt-v3 FresnelSpecular): one sample either reflects, with probability
 // F(cos θo), weight F R / |cos θi|, or refracts, with probability 1 − F, weight
-// T (1 − F) (η_o/η_i)² / |cos θi| (radiance transport), so that f |cos θi| / pdf is R for a
-// reflected sample and T (η_o/η_i)² for a refracted one. Total internal reflection has F = 1:
+// T (1 − F) (η_wo/η_wi)² / |cos θi| (radiance transport), so that f |cos θi| / pdf is R for a
+// reflected sample and T (η_wo/η_wi)² for a refracted one. Total internal reflection has F = 1:
 // it always reflects.
 #pragma once
 

@@ -1,7 +1,10 @@
 // Perfect specular transmission through a smooth dielectric (pbrt-v3 SpecularTransmission,
 // radiance transport): a delta lobe in the refracted direction with weight
-// T (1 − F) (η_o/η_i)² / |cos θi|. wo above the surface (cos θo > 0) is outside (eta_i);
-// below is inside (eta_t). Total internal reflection gives no sample: this lobe only transmits.
+// T (1 − F) (η_wo/η_wi)² / |cos θi|. wo above the surface (cos θo > 0) is outside (eta_i);
+// below is inside (eta_t). The (η_wo/η_wi)² is because radiance itself changes across the
+// interface (L/η² is what a refracted ray conserves; see specular_refract): light entering
+// glass gets brighter per solid angle, light leaving it dimmer. Total internal reflection
+// gives no sample: this lobe only transmits.
 #pragma once
 
 #include "bxdf/bxdf.h"
