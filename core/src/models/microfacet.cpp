@@ -4,6 +4,7 @@
 #include "bxdf/microfacet/beckmann.h"
 #include "bxdf/microfacet/blinn.h"
 #include "bxdf/microfacet/ggx.h"
+#include "bxdf/fresnel_params.h"
 #include "bxdf/model_support.h"
 #include "bxdf/registry.h"
 
@@ -11,32 +12,15 @@ namespace bxdf {
 
 namespace {
 
-Fresnel fresnel_from(const ParamSet& p) {
-  const std::string& kind = p.string("fresnel");
-  if (kind == "dielectric")
-    return Fresnel::dielectric(static_cast<float>(p.number("eta_i")),
-                               static_cast<float>(p.number("eta_t")));
-  if (kind == "conductor") return Fresnel::conductor(to_rgb(p.rgb("eta")), to_rgb(p.rgb("k")));
-  return Fresnel::none();
-}
-
 template <class Distribution>
 std::unique_ptr<BxDF> make_torrance_sparrow(const ParamSet& p, const Distribution& d) {
   const MicrofacetShadowing g =
       p.string("shadowing") == "smith" ? MicrofacetShadowing::Smith : MicrofacetShadowing::VGroove;
   return std::make_unique<TorranceSparrow<Distribution>>(to_rgb(p.rgb("reflectance")), d, g,
-                                                         fresnel_from(p));
+                                                         fresnel_from_params(p));
 }
 
 float number(const ParamSet& p, const char* name) { return static_cast<float>(p.number(name)); }
-
-// A conductor's η is > 0, as specular_reflection declares it.
-ParamSpec conductor_eta_param() {
-  ParamSpec s = rgb_param("eta", {0.37, 0.37, 0.37}, 0.0, 10.0,
-                          "Conductor index of refraction eta (default: the seed's gold)");
-  s.min_exclusive = true;
-  return s;
-}
 
 }  // namespace
 
@@ -67,17 +51,8 @@ ModelInfo microfacet_model() {
           "distribution", alpha_kinds),
       enum_param("shadowing", "smith", {"v_groove", "smith"},
                  "Shadowing-masking G: the seed's V-groove, or height-correlated Smith"),
-      enum_param("fresnel", "none", {"none", "dielectric", "conductor"},
-                 "Fresnel term F: none (F = 1), dielectric or conductor"),
-      only_when(positive_param("eta_i", 1.0, 10.0, "", "Index of refraction outside (dielectric)"),
-                "fresnel", {"dielectric"}),
-      only_when(positive_param("eta_t", 1.5, 10.0, "", "Index of refraction inside (dielectric)"),
-                "fresnel", {"dielectric"}),
-      only_when(conductor_eta_param(), "fresnel", {"conductor"}),
-      only_when(rgb_param("k", {2.82, 2.82, 2.82}, 0.0, 20.0,
-                          "Conductor absorption coefficient k (default: the seed's gold)"),
-                "fresnel", {"conductor"}),
   };
+  for (ParamSpec& s : fresnel_params("none")) m.params.push_back(std::move(s));
   m.create = [](const ParamSet& p) -> std::unique_ptr<BxDF> {
     const std::string& d = p.string("distribution");
     if (d == "blinn") return make_torrance_sparrow(p, microfacet::Blinn(number(p, "exponent")));
