@@ -216,3 +216,19 @@ TEST(Fit, RefusesBadRequests) {
   o.lobes = 1;
   EXPECT_NE(message(o, {samples.begin(), samples.begin() + 3}).find("usable samples"), std::string::npos);
 }
+
+// The fitted parameters, rebuilt through the registry (lafortune, lambertian + microfacet),
+// give the error the fit reports: the fit's formulas are the registry models' formulas.
+TEST(Fit, RegistryModelsReproduceTheFittedError) {
+  const auto samples = load_measured_data(kDataDir + "/garnet_red.brdf")->samples();
+  for (const std::string& model : bxdf::fit::fit_model_names()) {
+    SCOPED_TRACE(model);
+    FitOptions o;
+    o.model = model;
+    o.lobes = 2;
+    o.max_starts = 2;
+    const FitResult r = fit::fit(samples, o);
+    const double rebuilt = fit_error(samples, *r.build());
+    EXPECT_NEAR(rebuilt, r.report.error, 1e-3 * r.report.error);
+  }
+}

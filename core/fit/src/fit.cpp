@@ -155,7 +155,7 @@ FitResult fit_lafortune(const std::vector<FitSample>& s, const FitOptions& optio
   bounds[0] = {0.0, 1.0};
   for (int l = 0; l < L; ++l) {
     bounds[size_t(1 + 3 * l)] = {-40.0, 20.0};                          // log K
-    bounds[size_t(3 + 3 * l)] = {std::log(0.5), std::log(20000.0)};    // log n
+    bounds[size_t(3 + 3 * l)] = {std::log(0.5), std::log(10000.0)};  // log n, registry max
   }
   FitResult result;
   std::vector<double> best_p[3];
