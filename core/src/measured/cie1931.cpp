@@ -6,8 +6,9 @@ namespace bxdf {
 
 namespace {
 
-// CIE 1931 2° standard observer, x̄ ȳ z̄ every 10 nm from 400 to 700 nm, as tabulated in
-// CIE 15:2004, Table T.4 (the 1 nm / 5 nm table, taken at every 10 nm; no interpolation).
+// CIE 1931 2° standard colorimetric observer, x̄ ȳ z̄ every 10 nm from 400 to 700 nm: the
+// CIE's own tabulation (CIE 15:2004 / ISO 11664-1, 5 nm steps), taken at every second row;
+// no interpolation.
 constexpr CieSample kCmf[kCieSamples] = {
     {0.014310f, 0.000396f, 0.067850f},  // 400
     {0.043510f, 0.001210f, 0.207400f},  // 410
