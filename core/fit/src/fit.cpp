@@ -105,18 +105,47 @@ FitResult fit_lambertian(const std::vector<FitSample>& s) {
 
 // ---- Lafortune: channels are independent, so each is fitted on its own -----------------------
 
+// The registry refuses a lobe whose max(|Cx|, |Cy|, |Cz|)^n exceeds Lafortune::kMaxPeak (1e20):
+// in log form log K + n log(√2 max(|cos ψ|, |sin ψ|)) ≤ 46. One extra residual per lobe
+// penalises crossing a slightly lower limit, so fitted lobes stay buildable.
+constexpr double kLobeLogPeakLimit = 44.0;
+constexpr double kLobePenaltyWeight = 10.0;
+
 template <int L>
 struct LafortuneCost {
   const std::vector<FitSample>* samples;
   int channel;
   template <class T>
   bool operator()(const T* p, T* r) const {
+    using std::abs;
+    using std::cos;
+    using std::exp;
+    using std::log;
+    using std::sin;
     const LafortuneChannel<T, L> model(p);
     const auto& s = *samples;
     for (size_t i = 0; i < s.size(); ++i) r[i] = (model(s[i]) - s[i].ref[channel]) * s[i].cos_i;
+    for (int l = 0; l < L; ++l) {
+      const T* q = p + 1 + 3 * l;
+      const T c = abs(cos(q[1])), sn = abs(sin(q[1]));
+      const T log_peak = q[0] + exp(q[2]) * log(std::sqrt(2.0) * (c > sn ? c : sn));
+      r[s.size() + size_t(l)] =
+          log_peak > T(kLobeLogPeakLimit) ? kLobePenaltyWeight * (log_peak - kLobeLogPeakLimit) : T(0.0);
+    }
     return true;
   }
 };
+
+template <int L>
+double lafortune_sum_squares(const std::vector<FitSample>& s, int channel, const std::vector<double>& p) {
+  const LafortuneChannel<double, L> model(p.data());
+  double ss = 0.0;
+  for (const auto& x : s) {
+    const double e = (model(x) - x.ref[channel]) * x.cos_i;
+    ss += e * e;
+  }
+  return std::isfinite(ss) ? ss : kInf;
+}
 
 template <int L>
 FitResult fit_lafortune(const std::vector<FitSample>& s, const FitOptions& options,
@@ -155,7 +184,7 @@ FitResult fit_lafortune(const std::vector<FitSample>& s, const FitOptions& optio
   bounds[0] = {0.0, 1.0};
   for (int l = 0; l < L; ++l) {
     bounds[size_t(1 + 3 * l)] = {-40.0, 20.0};                          // log K
-    bounds[size_t(3 + 3 * l)] = {std::log(0.5), std::log(10000.0)};  // log n, registry max
+    bounds[size_t(3 + 3 * l)] = {std::log(0.5), std::log(9999.0)};  // log n, registry max 1e4
   }
   FitResult result;
   std::vector<double> best_p[3];
@@ -194,7 +223,14 @@ FitResult fit_lafortune(const std::vector<FitSample>& s, const FitOptions& optio
     Solution best;
     for (size_t k = 0; k < starts.size(); ++k) {
       auto* cost = new LafortuneCost<L>{&s, c};
-      const Solution sol = solve<N>(cost, static_cast<int>(s.size()), starts[k], bounds, options);
+      Solution sol = solve<N>(cost, static_cast<int>(s.size()) + L, starts[k], bounds, options);
+      sol.sum_squares = lafortune_sum_squares<L>(s, c, sol.p);  // without the penalty terms
+      // A solution the registry would refuse (a lobe still past the peak limit) cannot win.
+      for (int l = 0; l < L; ++l) {
+        const double* q = &sol.p[size_t(1 + 3 * l)];
+        const double m = std::max(std::fabs(std::cos(q[1])), std::fabs(std::sin(q[1])));
+        if (q[0] + std::exp(q[2]) * std::log(std::sqrt(2.0) * m) > std::log(1e20)) sol.sum_squares = kInf;
+      }
       result.report.total_iterations += sol.iterations;
       if (start_ss.size() <= k) start_ss.resize(k + 1, 0.0);
       start_ss[k] += sol.sum_squares;
@@ -213,7 +249,8 @@ FitResult fit_lafortune(const std::vector<FitSample>& s, const FitOptions& optio
     RGBValue cxy{}, cz{}, n{};
     for (int c = 0; c < 3; ++c) {
       const double* q = &best_p[c][size_t(1 + 3 * l)];
-      const double exponent = std::exp(q[2]);
+      // exp(log n) can round just past the bound, which the registry would refuse.
+      const double exponent = std::min(std::exp(q[2]), std::exp(bounds[size_t(3 + 3 * l)].hi));
       const double scale = std::sqrt(2.0) * std::exp(q[0] / exponent);  // √2 K^(1/n)
       cxy[size_t(c)] = scale * std::cos(q[1]);
       cz[size_t(c)] = scale * std::sin(q[1]);
