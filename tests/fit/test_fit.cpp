@@ -218,6 +218,17 @@ TEST(Fit, RefusesBadRequests) {
   EXPECT_NE(message(o, samples).find("lobes = 4"), std::string::npos);
   o.lobes = 1;
   EXPECT_NE(message(o, {samples.begin(), samples.begin() + 3}).find("usable samples"), std::string::npos);
+  // Through the registry: a measured model is accepted, anything else is refused by name.
+  ParamSet p;
+  p.set("path", kDataDir + "/acryl_blue.brdf");
+  o.model = "lambertian";
+  EXPECT_EQ(fit::fit(*make("measured", p), o).report.samples, 1439u);
+  try {
+    fit::fit(*make("lambertian"), o);
+    ADD_FAILURE() << "fitting to a lambertian model was accepted";
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("'lambertian'"), std::string::npos) << e.what();
+  }
 }
 
 // The fitted parameters, rebuilt through the registry (lafortune, lambertian + microfacet),

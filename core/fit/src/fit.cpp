@@ -7,6 +7,7 @@
 
 #include <ceres/ceres.h>
 
+#include "bxdf/models/measured.h"
 #include "bxdf/registry.h"
 #include "fit_geometry.h"
 #include "fit_kernels.h"
@@ -439,6 +440,14 @@ FitResult fit(const std::vector<MeasuredSample>& samples, const FitOptions& opti
 
 FitResult fit(const MeasuredData& data, const FitOptions& options) {
   return fit(data.samples(options.merl_stride), options);
+}
+
+FitResult fit(const BxDF& measured_model, const FitOptions& options) {
+  const auto* m = dynamic_cast<const MeasuredBRDF*>(&measured_model);
+  if (!m)
+    throw ParameterError("fit: the model to fit to is '" + measured_model.model_name() +
+                         "'; valid: a 'measured' model (a MERL or Cornell file)");
+  return fit(m->data(), options);
 }
 
 BxDFPtr FitResult::build() const {

@@ -70,6 +70,9 @@ std::vector<std::string> fit_model_names();
 // Throws ParameterError for an unknown model, a bad lobe count or no usable samples.
 FitResult fit(const std::vector<MeasuredSample>& samples, const FitOptions& options);
 FitResult fit(const MeasuredData& data, const FitOptions& options);
+// The same for a `measured` registry model (what bxdf.load_measured returns); any other model
+// is refused with a ParameterError.
+FitResult fit(const BxDF& measured_model, const FitOptions& options);
 
 // The error above for any model (e.g. a fitted one rebuilt from the registry), so that
 // fits and registry models can be compared on the same footing.
