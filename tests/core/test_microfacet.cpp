@@ -1,16 +1,20 @@
 // The `microfacet` model (Torrance–Sparrow): the V-groove G against the seed's expression,
 // f against an evaluation written out here in double precision for every distribution,
-// shadowing and Fresnel kind, and its parameters.
+// shadowing and Fresnel kind, the optional diffuse term (f, the lobe mixture's pdf and
+// sampling, and that a black one leaves the plain lobe untouched), and its parameters.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "bxdf/microfacet/beckmann.h"
 #include "bxdf/microfacet/blinn.h"
+#include "bxdf/microfacet/ggx.h"
 #include "bxdf/models/microfacet.h"
 #include "bxdf/registry.h"
 #include "bxdf/rng.h"
+#include "microfacet_quadrature.h"
 
 using namespace bxdf;
 
@@ -235,6 +239,7 @@ TEST(Microfacet, ParametersAreRefusedByNameAndShownOnlyForTheirKind) {
     return std::string("missing");
   };
   EXPECT_EQ(when("reflectance"), "");
+  EXPECT_EQ(when("diffuse"), "");
   EXPECT_EQ(when("exponent"), "distribution blinn");
   EXPECT_EQ(when("exponent_x"), "distribution ashikhmin_shirley");
   EXPECT_EQ(when("alpha_y"), "distribution beckmann ggx");
@@ -257,4 +262,159 @@ TEST(Microfacet, TinyAlphaIsRaisedToTheFloorAndStaysFinite) {
   const BxDFSample s = a->sample_f(wo, Point2(0.3f, 0.6f));
   ASSERT_TRUE(s.valid());
   EXPECT_NEAR(s.wi.x, -0.6f, 1e-3f);  // a near-perfect mirror
+}
+
+TEST(Microfacet, DiffuseTermAddsRdOverPi) {
+  const double rd[3] = {0.3, 0.55, 0.1};
+  std::vector<Reference> cases;
+  Reference r;
+  r.shadowing = "v_groove";
+  r.fresnel = "dielectric";
+  r.distribution = "blinn";
+  r.e = 35;
+  cases.push_back(r);
+  r.shadowing = "smith";
+  r.distribution = "ggx";
+  r.ax = 0.5;
+  r.ay = 0.12;
+  cases.push_back(r);
+  PCG32 rng(9);
+  for (const Reference& ref : cases) {
+    SCOPED_TRACE(ref.distribution);
+    ParamSet p = ref.params(0.7);
+    p.set("diffuse", RGBValue{rd[0], rd[1], rd[2]});
+    const BxDFPtr m = make("microfacet", p);
+    EXPECT_EQ(m->flags(), uint32_t(kReflection | kGlossy | kDiffuse));
+    for (int i = 0; i < 500; ++i) {
+      const Vec3 wo = random_upper(rng), wi = random_upper(rng);
+      const double lobe = ref.f(to_v(wo), to_v(wi), 0.7);
+      const RGB got = m->f(wo, wi);
+      for (int c = 0; c < 3; ++c) {
+        const double expected = rd[c] / kPiD + lobe;
+        EXPECT_NEAR(got[c], expected, 1e-4 * expected + 1e-7);
+      }
+      // Two-sided like the lobe, and nothing into the other hemisphere.
+      EXPECT_EQ(m->f(Vec3(wo.x, wo.y, -wo.z), Vec3(wi.x, wi.y, -wi.z)), got);
+      EXPECT_EQ(m->f(wo, Vec3(wi.x, wi.y, -wi.z)), RGB(0.0f));
+      EXPECT_EQ(m->pdf(wo, Vec3(wi.x, wi.y, -wi.z)), 0.0f);
+    }
+  }
+}
+
+// With a black diffuse term, sampling is the plain lobe's: u goes to the distribution
+// unchanged (no probability spent on the empty lobe) and the pdf is the lobe's own.
+TEST(Microfacet, BlackDiffuseLeavesTheLobeUntouched) {
+  const microfacet::GGX ggx(0.3f, 0.15f);
+  const TorranceSparrow<microfacet::GGX> plain(RGB(0.9f), ggx, MicrofacetShadowing::Smith,
+                                               Fresnel::dielectric(1.0f, 1.5f));
+  EXPECT_EQ(plain.flags(), uint32_t(kReflection | kGlossy));
+  EXPECT_EQ(plain.diffuse_probability(), 0.0f);
+  ParamSet p;
+  p.set("diffuse", 0.0);
+  EXPECT_EQ(make("microfacet", p)->flags(), uint32_t(kReflection | kGlossy));
+  PCG32 rng(21);
+  int valid = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 wo = random_upper(rng);
+    const Point2 u(rng.uniform(), rng.uniform());
+    const BxDFSample s = plain.sample(wo, u);
+    const Vec3 wh = ggx.sample_wh(wo, u);
+    const Vec3 wi = reflect(wo, wh);
+    if (!(dot(wo, wh) > 0.0f) || !(wi.z > 0.0f)) {
+      EXPECT_FALSE(s.valid());
+      continue;
+    }
+    ++valid;
+    ASSERT_TRUE(s.valid());
+    EXPECT_EQ(s.wi.x, wi.x);
+    EXPECT_EQ(s.wi.y, wi.y);
+    EXPECT_EQ(s.wi.z, wi.z);
+    EXPECT_EQ(s.flags, uint32_t(kReflection | kGlossy));
+    const Vec3 h = normalize(wo + wi);
+    EXPECT_EQ(s.pdf, ggx.pdf_wh(wo, h) / (4.0f * dot(wo, h)));
+    EXPECT_EQ(plain.density(wo, wi), s.pdf);
+  }
+  EXPECT_GT(valid, 1500);
+}
+
+// ∫ pdf dωi, as an integral over half vectors: dωi = 4 |ωo·ωh| dωh.
+static double pdf_integral(const BxDF& m, const Vec3& wo, double alpha) {
+  const auto q = bxdf_test::quadrature_for_alphas(alpha, alpha);
+  return q.integrate([&](const Vec3& wh) {
+    const float wo_h = dot(wo, wh);
+    if (!(wo_h > 0.0f)) return 0.0;
+    return double(m.pdf(wo, reflect(wo, wh))) * 4.0 * wo_h;
+  });
+}
+
+TEST(Microfacet, DiffuseMixturePdfIntegratesToOne) {
+  const double alpha = 0.25;
+  ParamSet p;
+  p.set("distribution", "beckmann");
+  p.set("alpha_x", alpha);
+  p.set("alpha_y", alpha);
+  p.set("fresnel", "dielectric");
+  const BxDFPtr lobe = make("microfacet", p);
+  p.set("diffuse", RGBValue{0.2, 0.4, 0.3});
+  const BxDFPtr both = make("microfacet", p);
+  const auto* ts = dynamic_cast<const TorranceSparrow<microfacet::Beckmann>*>(both.get());
+  ASSERT_NE(ts, nullptr);
+  const double pd = ts->diffuse_probability();
+  EXPECT_GE(pd, 0.1);
+  EXPECT_LE(pd, 0.9);
+  EXPECT_GT(pd, 0.5);  // Rd luminance ≈ 0.36 against R F(0) = 0.8 · 0.04
+  for (const Vec3& wo : {Vec3(0.0f, 0.0f, 1.0f), normalize(Vec3(0.6f, 0.2f, 0.75f))}) {
+    SCOPED_TRACE(wo.z);
+    // The lobe alone loses only what it reflects below the horizon.
+    const double lobe_mass = pdf_integral(*lobe, wo, alpha);
+    EXPECT_LE(lobe_mass, 1.0 + 2e-3);
+    EXPECT_GT(lobe_mass, 0.95);
+    // The mixture: the cosine lobe's whole mass plus the glossy lobe's share.
+    EXPECT_NEAR(pdf_integral(*both, wo, alpha), pd + (1.0 - pd) * lobe_mass, 2e-3);
+  }
+}
+
+TEST(Microfacet, DiffuseMixtureSamplesMatchPdfAndF) {
+  ParamSet p;
+  p.set("distribution", "ggx");
+  p.set("alpha_x", 0.2);
+  p.set("alpha_y", 0.35);
+  p.set("reflectance", 0.9);
+  p.set("fresnel", "dielectric");
+  p.set("diffuse", RGBValue{0.5, 0.3, 0.1});
+  const BxDFPtr m = make("microfacet", p);
+  const double pd = dynamic_cast<const TorranceSparrow<microfacet::GGX>&>(*m).diffuse_probability();
+  const Vec3 wo = normalize(Vec3(0.5f, -0.3f, 0.8f));
+  PCG32 rng(33);
+  const int n = 40000;
+  int diffuse = 0;
+  double estimate = 0.0;  // ∫ f_g cos θi dωi by importance sampling
+  for (int i = 0; i < n; ++i) {
+    const BxDFSample s = m->sample_f(wo, Point2(rng.uniform(), rng.uniform()));
+    if (!s.valid()) continue;
+    diffuse += (s.flags & kDiffuse) != 0;
+    EXPECT_NEAR(s.pdf, m->pdf(wo, s.wi), 1e-4f * s.pdf);
+    const RGB f = m->f(wo, s.wi);
+    EXPECT_NEAR(s.f.g, f.g, 1e-5f * f.g);
+    estimate += s.f.g * s.wi.z / s.pdf;
+  }
+  estimate /= n;
+  EXPECT_NEAR(double(diffuse) / n, pd, 0.01);
+  // The same integral by quadrature over half vectors (dωi = 4 |ωo·ωh| dωh).
+  const auto q = bxdf_test::quadrature_for_alphas(0.2, 0.35);
+  const double expected = q.integrate([&](const Vec3& wh) {
+    const float wo_h = dot(wo, wh);
+    if (!(wo_h > 0.0f)) return 0.0;
+    const Vec3 wi = reflect(wo, wh);
+    return wi.z > 0.0f ? double(m->f(wo, wi).g) * wi.z * 4.0 * wo_h : 0.0;
+  });
+  EXPECT_NEAR(estimate, expected, 0.01 * expected);
+}
+
+TEST(Microfacet, DiffuseOutOfRangeIsRefusedByName) {
+  ParamSet p;
+  p.set("diffuse", RGBValue{0.2, 1.5, 0.0});
+  const std::string msg = error_of(p);
+  EXPECT_NE(msg.find("'diffuse'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("[0, 1]"), std::string::npos) << msg;
 }

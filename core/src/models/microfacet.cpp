@@ -17,7 +17,8 @@ std::unique_ptr<BxDF> make_torrance_sparrow(const ParamSet& p, const Distributio
   const MicrofacetShadowing g =
       p.string("shadowing") == "smith" ? MicrofacetShadowing::Smith : MicrofacetShadowing::VGroove;
   return std::make_unique<TorranceSparrow<Distribution>>(to_rgb(p.rgb("reflectance")), d, g,
-                                                         fresnel_from_params(p));
+                                                         fresnel_from_params(p),
+                                                         to_rgb(p.rgb("diffuse")));
 }
 
 float number(const ParamSet& p, const char* name) { return static_cast<float>(p.number(name)); }
@@ -27,10 +28,14 @@ float number(const ParamSet& p, const char* name) { return static_cast<float>(p.
 ModelInfo microfacet_model() {
   ModelInfo m;
   m.name = "microfacet";
-  m.doc = "Torrance-Sparrow microfacet reflection, f = R D G F / (4 cos_i cos_o)";
+  m.doc = "Torrance-Sparrow microfacet reflection over an optional Lambertian term, "
+          "f = diffuse/pi + R D G F / (4 cos_i cos_o)";
   const std::vector<std::string> alpha_kinds = {"beckmann", "ggx"};
   m.params = {
       rgb_param("reflectance", {0.8, 0.8, 0.8}, 0.0, 1.0, "Reflectance R that scales the lobe"),
+      rgb_param("diffuse", {0.0, 0.0, 0.0}, 0.0, 1.0,
+                "Reflectance of a Lambertian term diffuse/pi added under the lobe (pbrt's plastic, "
+                "Ngan et al.'s fits); black: none"),
       enum_param("distribution", "ggx", {"blinn", "ashikhmin_shirley", "beckmann", "ggx"},
                  "Microfacet normal distribution D"),
       only_when(float_param("exponent", 20.0, 0.0, 1e6, "", "Blinn exponent e: larger is smoother"),
