@@ -51,10 +51,10 @@ double torrance_sparrow(const Vec3& wo, const Vec3& wi, double eta, D d) {
   return d(double(h.z)) * g * fresnel(dot(wi, h), eta) / (4.0 * wo.z * wi.z);
 }
 
-const ParamSet& component(const FitResult& r, const std::string& model) {
-  for (const auto& c : r.components)
-    if (c.model == model) return c.params;
-  throw std::runtime_error("no component " + model);
+// The fitted parameters, after checking that the fit is the expected registry model.
+const ParamSet& fitted(const FitResult& r, const std::string& model) {
+  EXPECT_EQ(r.model, model);
+  return r.params;
 }
 
 void expect_rel(double got, double want, double tol, const char* what) {
@@ -70,7 +70,7 @@ TEST(Fit, LambertianIsTheWeightedLeastSquaresOptimum) {
   FitOptions o;
   o.model = "lambertian";
   const FitResult r = fit::fit(samples, o);
-  const RGBValue rho = component(r, "lambertian").rgb("reflectance");
+  const RGBValue rho = fitted(r, "lambertian").rgb("reflectance");
   EXPECT_NEAR(rho[0], 0.5, 1e-6);
   EXPECT_NEAR(rho[1], 0.25, 1e-6);
   EXPECT_NEAR(rho[2], 0.125, 1e-6);
@@ -91,7 +91,7 @@ TEST(Fit, RecoversOneLobeLafortune) {
   o.model = "lafortune";
   o.lobes = 1;
   const FitResult r = fit::fit(samples, o);
-  const ParamSet& p = component(r, "lafortune");
+  const ParamSet& p = fitted(r, "lafortune");
   const ParamSet& lobe = p.list("lobes").at(0);
   for (int c = 0; c < 3; ++c) {
     SCOPED_TRACE(c);
@@ -114,7 +114,7 @@ TEST(Fit, RecoversTwoLobeLafortune) {
   o.model = "lafortune";
   o.lobes = 2;
   const FitResult r = fit::fit(samples, o);
-  const ParamSet& p = component(r, "lafortune");
+  const ParamSet& p = fitted(r, "lafortune");
   std::vector<ParamSet> lobes = p.list("lobes");
   std::sort(lobes.begin(), lobes.end(), [](const ParamSet& a, const ParamSet& b) {
     return a.rgb("exponent")[0] > b.rgb("exponent")[0];
@@ -145,10 +145,9 @@ TEST(Fit, RecoversBlinnAndBeckmannTorranceSparrow) {
     FitOptions o;
     o.model = "blinn";
     const FitResult r = fit::fit(samples, o);
-    const ParamSet& d = component(r, "lambertian");
-    const ParamSet& m = component(r, "microfacet");
+    const ParamSet& m = fitted(r, "microfacet");
     for (int c = 0; c < 3; ++c) {
-      expect_rel(d.rgb("reflectance")[size_t(c)], rd[c], 0.01, "blinn diffuse");
+      expect_rel(m.rgb("diffuse")[size_t(c)], rd[c], 0.01, "blinn diffuse");
       expect_rel(m.rgb("reflectance")[size_t(c)], rs[c], 0.01, "blinn specular");
     }
     expect_rel(m.number("exponent"), e, 0.01, "exponent");
@@ -169,9 +168,9 @@ TEST(Fit, RecoversBlinnAndBeckmannTorranceSparrow) {
     FitOptions o;
     o.model = "cook_torrance";
     const FitResult r = fit::fit(samples, o);
-    const ParamSet& m = component(r, "microfacet");
+    const ParamSet& m = fitted(r, "microfacet");
     for (int c = 0; c < 3; ++c) {
-      expect_rel(component(r, "lambertian").rgb("reflectance")[size_t(c)], rd[c], 0.01, "ct diffuse");
+      expect_rel(m.rgb("diffuse")[size_t(c)], rd[c], 0.01, "ct diffuse");
       expect_rel(m.rgb("reflectance")[size_t(c)], rs[c], 0.01, "ct specular");
     }
     expect_rel(m.number("alpha_x"), alpha, 0.01, "alpha");
@@ -231,8 +230,9 @@ TEST(Fit, RefusesBadRequests) {
   }
 }
 
-// The fitted parameters, rebuilt through the registry (lafortune, lambertian + microfacet),
-// give the error the fit reports: the fit's formulas are the registry models' formulas.
+// The fitted parameters, rebuilt through the registry (lambertian, lafortune, microfacet with
+// its diffuse term), give the error the fit reports: the fit's formulas are the registry
+// models' formulas, and the result is one model that bxdf::make rebuilds by name.
 TEST(Fit, RegistryModelsReproduceTheFittedError) {
   const auto samples = load_measured_data(kDataDir + "/garnet_red.brdf")->samples();
   for (const std::string& model : bxdf::fit::fit_model_names()) {
@@ -242,7 +242,15 @@ TEST(Fit, RegistryModelsReproduceTheFittedError) {
     o.lobes = 2;
     o.max_starts = 2;
     const FitResult r = fit::fit(samples, o);
-    const double rebuilt = fit_error(samples, *r.build());
+    const BxDFPtr model_from_registry = make(r.model, r.params);
+    EXPECT_EQ(model_from_registry->model_name(), r.model);
+    if (model != "lambertian" && model != "lafortune") {
+      EXPECT_EQ(r.model, "microfacet");
+      EXPECT_FALSE(RGB(float(r.params.rgb("diffuse")[0]), float(r.params.rgb("diffuse")[1]),
+                       float(r.params.rgb("diffuse")[2])).is_black());
+    }
+    const double rebuilt = fit_error(samples, *model_from_registry);
+    EXPECT_EQ(rebuilt, fit_error(samples, *r.build()));
     EXPECT_NEAR(rebuilt, r.report.error, 1e-3 * r.report.error);
   }
 }
@@ -284,9 +292,9 @@ TEST(Fit, RecoversCookTorranceFromASyntheticMerlFile) {
   o.merl_stride = 8;
   const FitResult r = fit::fit(*data, o);
   EXPECT_GT(r.report.samples, 10000u);
-  const ParamSet& m = component(r, "microfacet");
+  const ParamSet& m = fitted(r, "microfacet");
   for (int c = 0; c < 3; ++c) {
-    expect_rel(component(r, "lambertian").rgb("reflectance")[size_t(c)], rd[c], 0.01, "diffuse");
+    expect_rel(m.rgb("diffuse")[size_t(c)], rd[c], 0.01, "diffuse");
     expect_rel(m.rgb("reflectance")[size_t(c)], rs[c], 0.01, "specular");
   }
   expect_rel(m.number("alpha_x"), alpha, 0.01, "alpha");

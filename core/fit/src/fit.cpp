@@ -11,7 +11,6 @@
 #include "bxdf/registry.h"
 #include "fit_geometry.h"
 #include "fit_kernels.h"
-#include "sum_bxdf.h"
 
 namespace bxdf::fit {
 
@@ -97,7 +96,8 @@ FitResult fit_lambertian(const std::vector<FitSample>& s) {
   }
   ParamSet p;
   p.set("reflectance", rho);
-  r.components.push_back({"lambertian", p});
+  r.model = "lambertian";
+  r.params = p;
   r.report.sum_squares = ss;
   r.report.starts = 1;
   r.report.start_errors = {rms(ss, s.size())};
@@ -265,14 +265,15 @@ FitResult fit_lafortune(const std::vector<FitSample>& s, const FitOptions& optio
     lobes.push_back(lobe);
   }
   params.set("lobes", lobes);
-  result.components.push_back({"lafortune", params});
+  result.model = "lafortune";
+  result.params = params;
   result.report.sum_squares = total_ss;
   result.report.starts = static_cast<int>(start_ss.size());
   for (double x : start_ss) result.report.start_errors.push_back(rms(x, s.size()));
   return result;
 }
 
-// ---- Lambertian + Torrance–Sparrow microfacet lobe, fitted jointly over the channels ---------
+// ---- Torrance–Sparrow microfacet lobe over a Lambertian term, fitted jointly over channels ---
 
 struct MicrofacetSpec {
   Distribution distribution;
@@ -348,9 +349,8 @@ FitResult fit_microfacet(const std::vector<FitSample>& s, const MicrofacetSpec& 
   result.report.starts = static_cast<int>(starts.size());
 
   const auto& p = best.p;
-  ParamSet diffuse;
-  diffuse.set("reflectance", RGBValue{p[0], p[1], p[2]});
   ParamSet specular;
+  specular.set("diffuse", RGBValue{p[0], p[1], p[2]});
   specular.set("reflectance", RGBValue{p[3], p[4], p[5]});
   switch (spec.distribution) {
     case Distribution::Blinn:
@@ -377,8 +377,8 @@ FitResult fit_microfacet(const std::vector<FitSample>& s, const MicrofacetSpec& 
   } else {
     specular.set("fresnel", "none");
   }
-  result.components.push_back({"lambertian", diffuse});
-  result.components.push_back({"microfacet", specular});
+  result.model = "microfacet";
+  result.params = specular;
   return result;
 }
 
@@ -424,9 +424,8 @@ FitResult fit(const std::vector<MeasuredSample>& samples, const FitOptions& opti
     for (const auto& n : fit_model_names()) known += (known.empty() ? "" : ", ") + n;
     throw ParameterError("fit: model '" + m + "' is not a fit model; valid: " + known);
   }
-  // Registry models validate (fill defaults, check ranges) when they exist in this build.
-  for (FitComponent& c : r.components)
-    if (const ModelInfo* info = find_model(c.model)) c.params = validate_params(c.model, info->params, c.params);
+  // The registry fills the defaults and checks the ranges, so build() cannot fail.
+  r.params = validate_params(r.model, find_model(r.model)->params, r.params);
   r.report.model = m == "lafortune" ? "lafortune" + std::to_string(options.lobes) : m;
   r.report.samples = s.size();
   r.report.error = rms(r.report.sum_squares, s.size());
@@ -450,12 +449,7 @@ FitResult fit(const BxDF& measured_model, const FitOptions& options) {
   return fit(m->data(), options);
 }
 
-BxDFPtr FitResult::build() const {
-  std::vector<BxDFPtr> parts;
-  for (const auto& c : components) parts.push_back(make(c.model, c.params));
-  if (parts.size() == 1) return parts[0];
-  return std::make_shared<SumBxDF>(std::move(parts));
-}
+BxDFPtr FitResult::build() const { return make(model, params); }
 
 double fit_error(const std::vector<MeasuredSample>& samples, const BxDF& model, double* sum_squares) {
   double ss = 0.0;

@@ -10,14 +10,13 @@
 //   lambertian          f = ρ/π                                         → lambertian
 //   lafortune (1–3)     f = ρd/π + Σ max(0, Cxy(xo xi + yo yi) + Cz zo zi)^n, all RGB
 //                                                                        → lafortune (one model)
-//   blinn               ρd/π + ρs D_blinn(e) G_vgroove F(η) / (4 cos θi cos θo)
-//   ashikhmin_shirley   ρd/π + ρs D_AS(ex, ey) G_vgroove F(η) / (4 cos θi cos θo)
-//   cook_torrance       ρd/π + ρs D_beckmann(α) G_vgroove F(η) / (4 cos θi cos θo)
-//   ggx                 ρd/π + ρs D_ggx(α) G_smith F(η) / (4 cos θi cos θo)
+//   blinn               ρd/π + ρs D_blinn(e) G_vgroove F(η) / (4 cos θi cos θo)  → microfacet
+//   ashikhmin_shirley   ρd/π + ρs D_AS(ex, ey) G_vgroove F(η) / (4 cos θi cos θo) → microfacet
+//   cook_torrance       ρd/π + ρs D_beckmann(α) G_vgroove F(η) / (4 cos θi cos θo) → microfacet
+//   ggx                 ρd/π + ρs D_ggx(α) G_smith F(η) / (4 cos θi cos θo)    → microfacet
 // F is the exact dielectric Fresnel term from air into a fitted η ∈ [1.01, 4]: all four are
-// Torrance–Sparrow models that differ only in D (and GGX in G), as in Ngan et al.'s comparison.
-// The microfacet fits are a sum of a `lambertian` and a `microfacet` registry model; the
-// registry has no sum model yet, so they are returned as two components (see FitResult).
+// Torrance–Sparrow models that differ only in D (and GGX in G), as in Ngan et al.'s comparison,
+// and each is one `microfacet` registry model (ρd is its `diffuse`, ρs its `reflectance`).
 // Each fit starts from several points and keeps the best.
 #pragma once
 
@@ -39,12 +38,6 @@ struct FitOptions {
   bool verbose = false;             // Ceres progress to stderr
 };
 
-// One registry model of the fitted result; the fitted BRDF is the sum of the components.
-struct FitComponent {
-  std::string model;
-  ParamSet params;  // validated by the registry: bxdf::make(model, params) rebuilds it
-};
-
 struct FitReport {
   std::string model;
   double error = 0.0;          // RMS cosine-weighted error (see above)
@@ -58,11 +51,12 @@ struct FitReport {
   std::vector<double> start_errors;  // error reached from each start
 };
 
+// The fitted model is one registry model.
 struct FitResult {
-  std::vector<FitComponent> components;
-  FitReport report;
-  // The fitted model: the single component, or a sum of them (not a registry model).
-  BxDFPtr build() const;
+  std::string model;  // registry name: lambertian, lafortune or microfacet
+  ParamSet params;    // validated by the registry
+  FitReport report;   // report.model names the fit (e.g. "lafortune2", "ggx")
+  BxDFPtr build() const;  // bxdf::make(model, params)
 };
 
 std::vector<std::string> fit_model_names();

@@ -3,10 +3,10 @@
 //   bxdf-fit FILE [--model lafortune] [--lobes 2] [--out material.json] [--plot DIR]
 //            [--starts N] [--iterations N] [--stride N] [--verbose]
 //
-// Prints the report (error, iterations, time). --out writes a bxdf-material JSON file for a
-// single-component result ({"model", "params"}) or, for diffuse + microfacet fits, a file with
-// "components" (the registry has no sum model yet). --plot writes, per incidence angle of the
-// data, the measured and fitted BRDF in the plane of incidence as CSV and SVG.
+// Prints the report (error, iterations, time) and the fitted registry model. --out writes it as
+// a material file (plugin/io, the format bxdf.load_material and the renderer read). --plot
+// writes, per incidence angle of the data, the measured and fitted BRDF in the plane of
+// incidence as CSV and SVG.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,61 +15,13 @@
 #include <map>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "bxdf/fit/fit.h"
+#include "bxdf/io/material_json.h"
 #include "bxdf/measured/measured_data.h"
 
 using namespace bxdf;
-using nlohmann::json;
 
 namespace {
-
-json value_to_json(const Value& v) {
-  switch (v.type()) {
-    case Value::Type::Number: return v.as_number();
-    case Value::Type::RGB: return json::array({v.as_rgb()[0], v.as_rgb()[1], v.as_rgb()[2]});
-    case Value::Type::String: return v.as_string();
-    case Value::Type::Bool: return v.as_bool();
-    case Value::Type::List: {
-      json a = json::array();
-      for (const ParamSet& item : v.as_list()) {
-        json o = json::object();
-        for (size_t i = 0; i < item.size(); ++i) o[item.names()[i]] = value_to_json(item.values()[i]);
-        a.push_back(o);
-      }
-      return a;
-    }
-  }
-  return nullptr;
-}
-
-json params_json(const ParamSet& p) {
-  json o = json::object();
-  for (size_t i = 0; i < p.size(); ++i) o[p.names()[i]] = value_to_json(p.values()[i]);
-  return o;
-}
-
-json result_json(const fit::FitResult& r, const std::string& name) {
-  json j = {{"format", "bxdf-material"}, {"version", 1}, {"name", name}};
-  if (r.components.size() == 1) {
-    j["model"] = r.components[0].model;
-    j["params"] = params_json(r.components[0].params);
-  } else {
-    json parts = json::array();
-    for (const auto& c : r.components) parts.push_back({{"model", c.model}, {"params", params_json(c.params)}});
-    j["components"] = parts;
-  }
-  j["fit"] = {{"model", r.report.model},
-              {"error", r.report.error},
-              {"baseline_error", r.report.baseline_error},
-              {"iterations", r.report.iterations},
-              {"total_iterations", r.report.total_iterations},
-              {"starts", r.report.starts},
-              {"samples", r.report.samples},
-              {"seconds", r.report.seconds}};
-  return j;
-}
 
 // Measured and fitted BRDF in the plane of incidence for each incidence angle of the data.
 void write_plots(const std::string& dir, const std::vector<MeasuredSample>& samples,
@@ -189,19 +141,16 @@ int main(int argc, char** argv) {
     std::printf("model %s: error %.6g (f = 0: %.6g), %d iterations (best start; %d over %d starts), %.3f s\n",
                 r.report.model.c_str(), r.report.error, r.report.baseline_error, r.report.iterations,
                 r.report.total_iterations, r.report.starts, r.report.seconds);
-    for (const auto& c : r.components)
-      std::printf("  %s %s\n", c.model.c_str(), Value(std::vector<ParamSet>{c.params}).to_string().c_str());
+    std::printf("  %s %s\n", r.model.c_str(), Value(std::vector<ParamSet>{r.params}).to_string().c_str());
     if (!out.empty()) {
-      std::ofstream f(out);
-      if (!f) throw ParameterError("cannot write '" + out + "'");
-      f << result_json(r, name).dump(2) << "\n";
+      io::save_material(io::MaterialDesc{name, r.model, r.params}, out);
       std::printf("wrote %s\n", out.c_str());
     }
     if (!plot.empty()) {
       write_plots(plot, samples, *r.build(), name);
       std::printf("wrote plots to %s\n", plot.c_str());
     }
-  } catch (const ParameterError& e) {
+  } catch (const std::exception& e) {  // ParameterError, and file-system errors of --plot
     std::fprintf(stderr, "bxdf-fit: %s\n", e.what());
     return 1;
   }
