@@ -369,8 +369,10 @@ TEST(Microfacet, DiffuseMixturePdfIntegratesToOne) {
     const double lobe_mass = pdf_integral(*lobe, wo, alpha);
     EXPECT_LE(lobe_mass, 1.0 + 2e-3);
     EXPECT_GT(lobe_mass, 0.95);
-    // The mixture: the cosine lobe's whole mass plus the glossy lobe's share.
-    EXPECT_NEAR(pdf_integral(*both, wo, alpha), pd + (1.0 - pd) * lobe_mass, 2e-3);
+    // The mixture: the cosine lobe's whole mass plus the glossy lobe's share, ≈ 1 here.
+    const double mass = pdf_integral(*both, wo, alpha);
+    EXPECT_NEAR(mass, pd + (1.0 - pd) * lobe_mass, 2e-3);
+    EXPECT_NEAR(mass, 1.0, 0.01);
   }
 }
 
@@ -417,4 +419,32 @@ TEST(Microfacet, DiffuseOutOfRangeIsRefusedByName) {
   const std::string msg = error_of(p);
   EXPECT_NE(msg.find("'diffuse'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("[0, 1]"), std::string::npos) << msg;
+}
+
+TEST(Microfacet, DiffuseModelStaysFiniteForAwkwardDirections) {
+  ParamSet p;
+  p.set("distribution", "blinn");
+  p.set("exponent", 1e5);
+  p.set("diffuse", RGBValue{0.9, 0.0, 0.4});
+  const BxDFPtr m = make("microfacet", p);
+  const std::vector<Vec3> dirs = {Vec3(0, 0, 0),         Vec3(0, 0, 1),          Vec3(0, 0, -3),
+                                  Vec3(1, 0, 0),         Vec3(1, 0, 1e-7f),      Vec3(-1, 0, 1e-7f),
+                                  Vec3(0.3f, 0.4f, -5), Vec3(1e-20f, 0, 1e-20f), Vec3(2, -1, 0.5f)};
+  for (const Vec3& wo : dirs) {
+    for (const Vec3& wi : dirs) {
+      const RGB f = m->f(wo, wi);
+      EXPECT_TRUE(finite_nonnegative(f));
+      const float pdf = m->pdf(wo, wi);
+      EXPECT_TRUE(std::isfinite(pdf) && pdf >= 0.0f);
+    }
+    for (const Point2 u : {Point2(0, 0), Point2(0.05f, 0.5f), Point2(0.5f, 0.999f),
+                           Point2(0.999999f, 0.2f)}) {
+      const BxDFSample s = m->sample_f(wo, u);
+      EXPECT_TRUE(finite_nonnegative(s.f));
+      EXPECT_TRUE(std::isfinite(s.pdf) && s.pdf >= 0.0f);
+      if (s.valid()) {
+        EXPECT_GT(s.wi.z * wo.z, 0.0f);
+      }
+    }
+  }
 }
