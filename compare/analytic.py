@@ -1,0 +1,134 @@
+"""Closed-form images of the scenes that have them: spheres lit by point or sun lights, direct light
+only (plus the Lambertian furnace). One ray through each pixel centre, the same camera as Blender's
+(sensor fit horizontal), shadow rays against every sphere, and the model's f from the core:
+
+    L = sum over lights of f(wo, wi) * cos(theta_i) * E_light,   E = I / d^2 (point) or E (sun).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .scene_spec import PointLight, SceneSpec, Sphere, SunLight, is_lambert_furnace
+
+RAY_EPSILON = 1e-6
+
+
+def make_model(model: str, params: dict):
+    """An object with .f(wo, wi) -> (N,3), from the core through `bxdf` when it imports."""
+    try:
+        import bxdf  # noqa: PLC0415 - optional until the bindings land
+    except ImportError:
+        from . import interim_analytic_models  # INTERIM: goes when `bxdf` is on main
+        return interim_analytic_models.make(model, params)
+    return bxdf.make(model, **params)
+
+
+def camera_rays(spec: SceneSpec):
+    w, h = spec.resolution
+    cam = spec.camera
+    origin = np.asarray(cam.location, float)
+    forward = np.asarray(cam.look_at, float) - origin
+    forward /= np.linalg.norm(forward)
+    right = np.cross(forward, (0.0, 0.0, 1.0))
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    half_w = np.tan(cam.horizontal_fov() / 2.0)
+    half_h = half_w * h / w
+    xs = (2.0 * (np.arange(w) + 0.5) / w - 1.0) * half_w
+    ys = (1.0 - 2.0 * (np.arange(h) + 0.5) / h) * half_h
+    gx, gy = np.meshgrid(xs, ys)
+    dirs = forward + gx[..., None] * right + gy[..., None] * up
+    dirs /= np.linalg.norm(dirs, axis=-1, keepdims=True)
+    return origin, dirs.reshape(-1, 3)
+
+
+def intersect_sphere(origins, dirs, center, radius):
+    """Nearest t > epsilon along each ray, inf where it misses."""
+    oc = origins - np.asarray(center, float)
+    b = np.einsum("ij,ij->i", oc, dirs)
+    c = np.einsum("ij,ij->i", oc, oc) - radius * radius
+    disc = b * b - c
+    t = np.full(len(dirs), np.inf)
+    ok = disc >= 0.0
+    root = np.sqrt(np.where(ok, disc, 0.0))
+    t_near, t_far = -b - root, -b + root
+    t = np.where(ok & (t_near > RAY_EPSILON), t_near, t)
+    t = np.where(ok & (t_near <= RAY_EPSILON) & (t_far > RAY_EPSILON), t_far, t)
+    return t
+
+
+def _frame(n):
+    """Orthonormal tangent, bitangent for unit normals n (N,3)."""
+    helper = np.where(np.abs(n[:, :1]) < 0.9, [[1.0, 0.0, 0.0]], [[0.0, 1.0, 0.0]])
+    t = np.cross(helper, n)
+    t /= np.linalg.norm(t, axis=1, keepdims=True)
+    return t, np.cross(n, t)
+
+
+def _to_local(v, t, b, n):
+    return np.stack([np.einsum("ij,ij->i", v, t), np.einsum("ij,ij->i", v, b),
+                     np.einsum("ij,ij->i", v, n)], axis=1)
+
+
+def render(spec: SceneSpec):
+    """(image float32 HxWx3, object id int HxW with -1 for background)."""
+    if not spec.has_analytic_truth():
+        raise ValueError(f"scene '{spec.name}' has no analytic truth")
+    w, h = spec.resolution
+    origin, dirs = camera_rays(spec)
+    origins = np.broadcast_to(origin, dirs.shape)
+    spheres = [o for o in spec.objects if isinstance(o, Sphere)]
+    t_hit = np.full(len(dirs), np.inf)
+    obj_id = np.full(len(dirs), -1)
+    for i, s in enumerate(spheres):
+        t = intersect_sphere(origins, dirs, s.center, s.radius)
+        closer = t < t_hit
+        t_hit[closer], obj_id[closer] = t[closer], i
+
+    image = np.zeros((len(dirs), 3))
+    image[obj_id < 0] = spec.world_color
+    if is_lambert_furnace(spec):
+        hit = obj_id >= 0
+        reflectance = np.asarray(spheres[0].material.params["reflectance"], float)
+        image[hit] = reflectance * np.asarray(spec.world_color, float)
+    else:
+        for i, s in enumerate(spheres):
+            sel = np.nonzero(obj_id == i)[0]
+            if len(sel):
+                image[sel] = _shade(spec, spheres, s, origin, dirs[sel], t_hit[sel])
+    return (image.reshape(h, w, 3).astype(np.float32), obj_id.reshape(h, w))
+
+
+def _shade(spec, spheres, sphere, origin, dirs, t):
+    model = make_model(sphere.material.model, sphere.material.params)
+    p = origin + dirs * t[:, None]
+    n = (p - np.asarray(sphere.center, float)) / sphere.radius
+    tangent, bitangent = _frame(n)
+    wo = _to_local(-dirs, tangent, bitangent, n)
+    out = np.zeros((len(dirs), 3))
+    for light in spec.lights:
+        if isinstance(light, PointLight):
+            to_light = np.asarray(light.location, float) - p
+            dist = np.linalg.norm(to_light, axis=1)
+            wi_world = to_light / dist[:, None]
+            irradiance = light.intensity / dist ** 2
+        elif isinstance(light, SunLight):
+            d = np.asarray(light.direction, float)
+            wi_world = np.broadcast_to(d / np.linalg.norm(d), p.shape)
+            dist = np.full(len(p), np.inf)
+            irradiance = np.full(len(p), light.irradiance)
+        else:
+            raise TypeError(f"unknown light {light!r}")
+        cos_i = np.einsum("ij,ij->i", wi_world, n)
+        lit = cos_i > 0.0
+        shadow_origin = p + n * 1e-5
+        for other in spheres:
+            ts = intersect_sphere(shadow_origin, wi_world, other.center, other.radius)
+            lit &= ~(ts < dist)
+        if not lit.any():
+            continue
+        wi = _to_local(wi_world[lit], tangent[lit], bitangent[lit], n[lit])
+        f = np.asarray(model.f(np.ascontiguousarray(wo[lit]), np.ascontiguousarray(wi)), float)
+        out[lit] += (f * (cos_i[lit] * irradiance[lit])[:, None]
+                     * np.asarray(light.color, float))
+    return out

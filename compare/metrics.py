@@ -1,0 +1,92 @@
+"""Image differences: mean, RMS, max, PSNR, relative MSE, and a per-pixel z-test of the difference
+against the Monte Carlo noise of the two images.
+
+Noise: each stochastic engine renders two half-sample images with different seeds, h1 and h2; the
+full image is their mean, whose per-pixel variance is estimated as (h1 - h2)^2 / 4, averaged over the
+3x3 neighbourhood (9 samples of it, so that one unlucky pixel does not make a tiny variance). A
+deterministic image (ANALYTIC, POV-Ray without anti-aliasing) has variance 0.
+
+The test adds a systematic tolerance for what is not noise but not a difference of formulas either:
+Blender's tessellated sphere (interpolated normals), float32 arithmetic and 16-bit PNG quantisation:
+sigma^2 = var_a + var_b + (REL_TOL * max(|a|, |b|) + ABS_TOL)^2. A pixel fails when |z| > Z_CRIT in
+any channel; an exact pairing passes when at most PASS_FRACTION of the compared pixels fail."""
+from __future__ import annotations
+
+import numpy as np
+
+Z_CRIT = 4.0
+REL_TOL = 0.005
+ABS_TOL = 2e-4
+PASS_FRACTION = 0.01
+RELMSE_EPSILON = 1e-2
+
+
+def box3(a):
+    """Mean over the 3x3 neighbourhood (edges replicated), per channel."""
+    p = np.pad(a, ((1, 1), (1, 1)) + ((0, 0),) * (a.ndim - 2), mode="edge")
+    h, w = a.shape[:2]
+    return sum(p[dy:dy + h, dx:dx + w] for dy in range(3) for dx in range(3)) / 9.0
+
+
+def variance_of_mean(half1, half2):
+    """Per-pixel variance of (half1 + half2)/2 from two independent half-sample renders."""
+    return box3((np.asarray(half1, float) - np.asarray(half2, float)) ** 2 / 4.0)
+
+
+def edge_mask(object_ids):
+    """True where a pixel's 3x3 neighbourhood covers more than one object (or background):
+    silhouettes, where the tessellated mesh and the true sphere may cover a pixel centre differently."""
+    p = np.pad(object_ids, 1, mode="edge")
+    h, w = object_ids.shape
+    edge = np.zeros((h, w), bool)
+    for dy in range(3):
+        for dx in range(3):
+            edge |= p[dy:dy + h, dx:dx + w] != object_ids
+    return edge
+
+
+def compare(a, b, var_a=None, var_b=None, mask=None):
+    """Figures of a - b over the pixels where `mask` is true (all if None). Images HxWx3."""
+    a = np.asarray(a, float)[..., :3]
+    b = np.asarray(b, float)[..., :3]
+    if a.shape != b.shape:
+        raise ValueError(f"image shapes differ: {a.shape} vs {b.shape}")
+    if mask is None:
+        mask = np.ones(a.shape[:2], bool)
+    var_a = np.zeros_like(a) if var_a is None else np.asarray(var_a, float)[..., :3]
+    var_b = np.zeros_like(b) if var_b is None else np.asarray(var_b, float)[..., :3]
+
+    diff = (a - b)[mask]
+    n = diff.shape[0]
+    if n == 0:
+        raise ValueError("no pixels to compare (mask is empty)")
+    ref = b[mask]
+    mse = float(np.mean(diff ** 2))
+    peak = float(max(np.max(np.abs(ref)), np.max(np.abs(a[mask])), 1e-12))
+    tolerance = REL_TOL * np.maximum(np.abs(a), np.abs(b)) + ABS_TOL
+    sigma = np.sqrt(var_a + var_b + tolerance ** 2)
+    z = (a - b) / sigma
+    z_abs = np.max(np.abs(z), axis=-1)
+    fail = (z_abs > Z_CRIT) & mask
+    return {
+        "pixels": int(n),
+        "mean": float(np.mean(diff)),
+        "mean_abs": float(np.mean(np.abs(diff))),
+        "rmse": float(np.sqrt(mse)),
+        "max_abs": float(np.max(np.abs(diff))),
+        "psnr": float("inf") if mse == 0 else float(10.0 * np.log10(peak * peak / mse)),
+        "rel_mse": float(np.mean(diff ** 2 / (ref ** 2 + RELMSE_EPSILON))),
+        "ratio_mean": float(np.sum(a[mask]) / max(np.sum(b[mask]), 1e-12)),
+        "z_fail_fraction": float(np.count_nonzero(fail) / n),
+        "z_max": float(np.max(z_abs[mask])),
+        "noise_rms": float(np.sqrt(np.mean((var_a + var_b)[mask]))),
+        "z_image": z_abs,
+        "diff_image": np.abs(a - b).mean(axis=-1),
+        "fail_image": fail,
+    }
+
+
+def passes(figures):
+    """True when the difference is noise (and tolerance) only. An `exact` pairing that does not pass
+    is flagged; for an `approximate` one it is the finding, not a failure."""
+    return bool(figures["z_fail_fraction"] <= PASS_FRACTION)

@@ -1,0 +1,58 @@
+"""Which engine pairings are `exact` (the same formula on both sides: the diff must be noise) and
+which `approximate` (a best mapping: the diff is the finding). Facts from reference/renderers.md:
+
+- Lambert is exact everywhere (POV-Ray through the light calibration of engine_setup).
+- Cycles' own Oren-Nayar (`cycles_oren_nayar`) and Glossy (`cycles_glossy`: GGX/Beckmann, separable
+  Smith, F = 1) are exact between Cycles, BXDF_LAB and the analytic image (both from the core's f).
+- Every model is exact between BXDF_LAB and ANALYTIC (both evaluate the core's f).
+- Everything else is approximate; so is any POV-Ray global illumination (radiosity is not a path
+  tracer) and any scene without analytic truth where a model is approximate in one engine."""
+from __future__ import annotations
+
+from itertools import combinations
+
+from . import ALL_ENGINES
+from .scene_spec import SceneSpec
+
+CORE = {"BXDF_LAB", "ANALYTIC"}
+EXACT_IN = {
+    "lambertian": {"BXDF_LAB", "ANALYTIC", "CYCLES", "POVRAY_RENDER"},
+    "cycles_oren_nayar": CORE | {"CYCLES"},
+    "cycles_glossy": CORE | {"CYCLES"},
+}
+
+
+def exact_engines(model: str) -> set:
+    return EXACT_IN.get(model, CORE)
+
+
+def label(spec: SceneSpec, a: str, b: str) -> str:
+    if spec.povray_radiosity and "POVRAY_RENDER" in (a, b):
+        return "approximate"
+    for material in spec.materials():
+        engines = exact_engines(material.model)
+        if a not in engines or b not in engines:
+            return "approximate"
+    return "exact"
+
+
+def approximations(spec: SceneSpec, a: str, b: str) -> list:
+    """Why a pairing is approximate, one line per reason."""
+    reasons = []
+    if spec.povray_radiosity and "POVRAY_RENDER" in (a, b):
+        reasons.append("POV-Ray's global illumination is radiosity (irradiance caching), "
+                       "not path tracing")
+    for material in spec.materials():
+        engines = exact_engines(material.model)
+        for engine in (a, b):
+            if engine not in engines:
+                reasons.append(f"{material.name}: {engine} has no '{material.model}'; "
+                               "it renders the closest mapping")
+    return reasons
+
+
+def pairs(engines) -> list:
+    """Every pair, ANALYTIC first when present (the reference is the second element `b`)."""
+    order = [e for e in ("ANALYTIC", "CYCLES", "BXDF_LAB", "POVRAY_RENDER") if e in engines]
+    assert set(order) == set(engines) and set(order) <= set(ALL_ENGINES), engines
+    return [(y, x) for x, y in combinations(order, 2)]

@@ -1,0 +1,101 @@
+"""Per-material plots with matplotlib: the lobe f*cos(theta_i) in the plane of incidence (polar) for
+three view angles, and the directional albedo rho(theta_o). f and rho come from the core through
+`bxdf` (rho by its own estimator); without the module, from the interim formulas and a midpoint
+quadrature of f*cos over the hemisphere."""
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .analytic import make_model  # noqa: E402
+
+VIEW_ANGLES_DEG = (0.0, 30.0, 60.0)
+
+
+def _luminance(rgb):
+    return rgb @ np.array([0.2126, 0.7152, 0.0722])
+
+
+def _dirs(theta):
+    return np.stack([np.sin(theta), np.zeros_like(theta), np.cos(theta)], axis=-1)
+
+
+def lobe_plot(material, path):
+    model = make_model(material.model, material.params)
+    theta_i = np.radians(np.linspace(-89.5, 89.5, 359))
+    wi = _dirs(theta_i)
+    fig = plt.figure(figsize=(3.6, 2.6), dpi=90)
+    ax = fig.add_subplot(projection="polar")
+    ax.set_theta_zero_location("N")
+    ax.set_thetamin(-90)
+    ax.set_thetamax(90)
+    for deg in VIEW_ANGLES_DEG:
+        wo = np.broadcast_to(_dirs(np.array([np.radians(deg)])), wi.shape).copy()
+        value = _luminance(np.asarray(model.f(wo, wi), float)) * np.cos(theta_i)
+        ax.plot(-theta_i, value, label=f"θo {deg:g}°")   # wo on the +x side, drawn on the right
+    ax.set_title(f"{material.name}: f·cosθi", fontsize=8)
+    ax.tick_params(labelsize=6)
+    ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(-0.15, -0.1))
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def directional_albedo(model, theta_o, n_samples=4096):
+    wo = _dirs(theta_o)
+    if hasattr(model, "rho"):
+        return np.asarray(model.rho(wo, n_samples), float)
+    n_theta, n_phi = 96, 192
+    t = (np.arange(n_theta) + 0.5) * (np.pi / 2) / n_theta
+    p = (np.arange(n_phi) + 0.5) * 2 * np.pi / n_phi
+    tt, pp = np.meshgrid(t, p, indexing="ij")
+    wi = np.stack([np.sin(tt) * np.cos(pp), np.sin(tt) * np.sin(pp), np.cos(tt)], -1).reshape(-1, 3)
+    weight = (np.cos(tt) * np.sin(tt)).reshape(-1) * (np.pi / 2 / n_theta) * (2 * np.pi / n_phi)
+    out = []
+    for w in wo:
+        f = np.asarray(model.f(np.broadcast_to(w, wi.shape).copy(), wi), float)
+        out.append((f * weight[:, None]).sum(axis=0))
+    return np.array(out)
+
+
+def albedo_plot(material, path):
+    model = make_model(material.model, material.params)
+    theta_o = np.radians(np.linspace(0.0, 88.0, 23))
+    rho = directional_albedo(model, theta_o)
+    fig, ax = plt.subplots(figsize=(3.6, 2.6), dpi=90)
+    for channel, color in enumerate(("tab:red", "tab:green", "tab:blue")):
+        ax.plot(np.degrees(theta_o), rho[:, channel], color=color)
+    ax.set_xlabel("θo (degrees)", fontsize=7)
+    ax.set_ylabel("ρ(θo)", fontsize=7)
+    ax.set_ylim(0.0, max(1.05, float(rho.max()) * 1.05))
+    ax.set_title(f"{material.name}: directional albedo", fontsize=8)
+    ax.tick_params(labelsize=6)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+    return rho
+
+
+def heatmap(diff, z, fail, z_crit, title, path):
+    """|a - b| and |z| side by side; failing pixels outlined in the z panel."""
+    fig, axes = plt.subplots(1, 2, figsize=(6.4, 2.7), dpi=90)
+    vmax = float(np.percentile(diff, 99.5)) or 1e-6
+    im = axes[0].imshow(diff, cmap="inferno", vmin=0.0, vmax=vmax, interpolation="nearest")
+    axes[0].set_title("|a − b| (channel mean)", fontsize=7)
+    fig.colorbar(im, ax=axes[0], fraction=0.046, pad=0.04).ax.tick_params(labelsize=6)
+    im = axes[1].imshow(np.minimum(z, 2 * z_crit), cmap="viridis", vmin=0.0, vmax=2 * z_crit,
+                        interpolation="nearest")
+    if fail.any():
+        axes[1].contour(fail, levels=[0.5], colors="red", linewidths=0.5)
+    axes[1].set_title(f"|z| (fail > {z_crit:g}, red)", fontsize=7)
+    fig.colorbar(im, ax=axes[1], fraction=0.046, pad=0.04).ax.tick_params(labelsize=6)
+    for ax in axes:
+        ax.set_xticks([])
+        ax.set_yticks([])
+    fig.suptitle(title, fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)

@@ -1,0 +1,170 @@
+"""The reference scenes. Each is a function returning a SceneSpec; `bpy_build.build(spec)` turns it
+into a bpy scene inside Blender and `analytic.render(spec)` computes its closed-form image.
+
+Light strengths are chosen so that a 0.8-albedo surface comes out near 0.5 (no clipping in any
+engine); the sun's irradiance is pi * srgb_to_linear(0.9) so that POV-Ray's three-digit sRGB light
+colour represents the calibrated value exactly (see engine_setup)."""
+from __future__ import annotations
+
+import math
+
+from .scene_spec import Box, Camera, Material, PointLight, Quad, SceneSpec, Sphere, SunLight
+
+
+def srgb_to_linear(c: float) -> float:
+    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+
+SPHERE_CAMERA = Camera(location=(0.0, -7.0, 0.0), look_at=(0.0, 0.0, 0.0), lens_mm=50.0)
+# Up, right and in front of the sphere: lit crescent plus a visible highlight for glossy models.
+SPHERE_KEY_LIGHT = PointLight(location=(3.0, -4.0, 3.0), intensity=40.0)
+SUN_IRRADIANCE = math.pi * srgb_to_linear(0.9)
+
+
+def _lit_sphere(name, description, material, spp=16):
+    return SceneSpec(
+        name=name, description=description, camera=SPHERE_CAMERA,
+        objects=(Sphere("sphere", (0.0, 0.0, 0.0), 1.0, material),),
+        lights=(SPHERE_KEY_LIGHT,), max_bounces=0, spp=spp, resolution=(128, 128),
+        tags=("lit_sphere",))
+
+
+def lit_lambertian():
+    return _lit_sphere("lit_lambertian", "Lambertian sphere, one point light, direct light only",
+                       Material("lambert_orange", "lambertian", {"reflectance": (0.8, 0.55, 0.3)}))
+
+
+def lit_cycles_oren_nayar():
+    return _lit_sphere("lit_cycles_oren_nayar",
+                       "Cycles' improved Oren-Nayar (roughness 0.8), one point light",
+                       Material("cycles_on_rough", "cycles_oren_nayar",
+                                {"color": (0.8, 0.8, 0.8), "roughness": 0.8}))
+
+
+def lit_oren_nayar():
+    return _lit_sphere("lit_oren_nayar", "Classic Oren-Nayar, sigma 30 degrees, one point light",
+                       Material("oren_nayar_30", "oren_nayar",
+                                {"reflectance": (0.8, 0.8, 0.8), "sigma": 30.0}))
+
+
+def lit_cycles_glossy_ggx():
+    return _lit_sphere("lit_cycles_glossy_ggx", "Cycles Glossy GGX, roughness 0.4, one point light",
+                       Material("glossy_ggx_04", "cycles_glossy",
+                                {"color": (0.9, 0.9, 0.9), "distribution": "ggx",
+                                 "roughness": 0.4}))
+
+
+def lit_cycles_glossy_beckmann():
+    return _lit_sphere("lit_cycles_glossy_beckmann",
+                       "Cycles Glossy Beckmann, roughness 0.3, one point light",
+                       Material("glossy_beckmann_03", "cycles_glossy",
+                                {"color": (0.9, 0.9, 0.9), "distribution": "beckmann",
+                                 "roughness": 0.3}))
+
+
+def sun_sphere():
+    return SceneSpec(
+        name="sun_sphere", description="Lambertian sphere under a sun (directional) light",
+        camera=SPHERE_CAMERA,
+        objects=(Sphere("sphere", (0.0, 0.0, 0.0), 1.0,
+                        Material("lambert_grey", "lambertian", {"reflectance": (0.7, 0.7, 0.7)})),),
+        lights=(SunLight(direction=(1.0, -1.0, 1.0), irradiance=SUN_IRRADIANCE),),
+        max_bounces=0, spp=16, resolution=(128, 128), tags=("lit_sphere",))
+
+
+def furnace():
+    return SceneSpec(
+        name="furnace",
+        description="Furnace: Lambertian sphere (albedo 0.8) in a uniform white world, all bounces; "
+                    "truth is 0.8 on the sphere and 1 elsewhere",
+        camera=SPHERE_CAMERA,
+        objects=(Sphere("sphere", (0.0, 0.0, 0.0), 1.0,
+                        Material("lambert_08", "lambertian", {"reflectance": (0.8, 0.8, 0.8)})),),
+        lights=(), world_color=(1.0, 1.0, 1.0), max_bounces=4, spp=64, resolution=(96, 96),
+        povray_radiosity=True, tags=("gi",))
+
+
+def sweep_glossy_roughness():
+    roughness = (0.1, 0.25, 0.4, 0.6, 0.85)
+    spheres = tuple(
+        Sphere(f"sphere_{i}", (-2.0 + 1.0 * i, 0.0, 0.0), 0.42,
+               Material(f"glossy_ggx_r{r:g}", "cycles_glossy",
+                        {"color": (0.9, 0.9, 0.9), "distribution": "ggx", "roughness": r}))
+        for i, r in enumerate(roughness))
+    return SceneSpec(
+        name="sweep_glossy_roughness",
+        description="Row of Cycles Glossy GGX spheres, roughness " + ", ".join(map(str, roughness)),
+        camera=Camera(location=(0.0, -9.0, 0.0), look_at=(0.0, 0.0, 0.0), lens_mm=50.0),
+        objects=spheres, lights=(PointLight(location=(1.0, -6.0, 3.0), intensity=60.0),),
+        max_bounces=0, spp=16, resolution=(256, 80), tags=("sweep",))
+
+
+def sweep_oren_nayar_sigma():
+    sigmas = (0.0, 10.0, 20.0, 40.0, 60.0)
+    spheres = tuple(
+        Sphere(f"sphere_{i}", (-2.0 + 1.0 * i, 0.0, 0.0), 0.42,
+               Material(f"oren_nayar_s{s:g}", "oren_nayar",
+                        {"reflectance": (0.8, 0.8, 0.8), "sigma": s}))
+        for i, s in enumerate(sigmas))
+    return SceneSpec(
+        name="sweep_oren_nayar_sigma",
+        description="Row of classic Oren-Nayar spheres, sigma " + ", ".join(map(str, sigmas)),
+        camera=Camera(location=(0.0, -9.0, 0.0), look_at=(0.0, 0.0, 0.0), lens_mm=50.0),
+        objects=spheres, lights=(PointLight(location=(4.0, -3.0, 2.0), intensity=60.0),),
+        max_bounces=0, spp=16, resolution=(256, 80), tags=("sweep",))
+
+
+def _cornell_walls():
+    white = Material("cornell_white", "lambertian", {"reflectance": (0.73, 0.73, 0.73)})
+    red = Material("cornell_red", "lambertian", {"reflectance": (0.63, 0.065, 0.05)})
+    green = Material("cornell_green", "lambertian", {"reflectance": (0.14, 0.45, 0.091)})
+    # Room x in [-1, 1], y in [-1, 1] (open towards -y, the camera), z in [0, 2].
+    return (
+        Quad("floor", ((-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)), white),
+        Quad("ceiling", ((-1, -1, 2), (-1, 1, 2), (1, 1, 2), (1, -1, 2)), white),
+        Quad("back_wall", ((-1, 1, 0), (1, 1, 0), (1, 1, 2), (-1, 1, 2)), white),
+        Quad("left_wall", ((-1, -1, 0), (-1, 1, 0), (-1, 1, 2), (-1, -1, 2)), red),
+        Quad("right_wall", ((1, -1, 0), (1, -1, 2), (1, 1, 2), (1, 1, 0)), green),
+    )
+
+
+def cornell():
+    diffuse = Material("box_diffuse", "lambertian", {"reflectance": (0.73, 0.73, 0.73)})
+    glossy = Material("sphere_glossy", "cycles_glossy",
+                      {"color": (0.8, 0.8, 0.8), "distribution": "ggx", "roughness": 0.35})
+    gold = Material("sphere_gold", "microfacet",
+                    {"reflectance": (1.0, 1.0, 1.0), "distribution": "ggx",
+                     "alpha_x": 0.05, "alpha_y": 0.05, "shadowing": "smith",
+                     "fresnel": "conductor", "eta": (0.370, 0.370, 0.370),
+                     "k": (2.820, 2.820, 2.820)})
+    glass = Material("sphere_glass", "fresnel_specular",
+                     {"reflectance": (1.0, 1.0, 1.0), "transmittance": (1.0, 1.0, 1.0),
+                      "eta_i": 1.0, "eta_t": 1.5})
+    objects = _cornell_walls() + (
+        Box("tall_box", (-0.4, 0.35, 0.6), (0.55, 0.55, 1.2), 20.0, diffuse),
+        Sphere("glossy_ball", (0.45, 0.45, 0.3), 0.3, glossy),
+        Sphere("gold_ball", (-0.5, -0.45, 0.25), 0.25, gold),
+        Sphere("glass_ball", (0.35, -0.35, 0.3), 0.3, glass),
+    )
+    return SceneSpec(
+        name="cornell",
+        description="Cornell-like room: diffuse box, glossy, gold and glass spheres, global "
+                    "illumination (4 bounces), one point light under the ceiling",
+        camera=Camera(location=(0.0, -3.9, 1.0), look_at=(0.0, 0.0, 1.0), lens_mm=45.0),
+        objects=objects, lights=(PointLight(location=(0.0, 0.0, 1.85), intensity=6.0),),
+        max_bounces=4, spp=128, resolution=(128, 128), povray_radiosity=True, tags=("gi",))
+
+
+SCENES = {f().name: f for f in (
+    lit_lambertian, lit_cycles_oren_nayar, lit_oren_nayar, lit_cycles_glossy_ggx,
+    lit_cycles_glossy_beckmann, sun_sphere, furnace, sweep_glossy_roughness,
+    sweep_oren_nayar_sigma, cornell)}
+
+DEFAULT_SCENES = tuple(SCENES)
+
+
+def get(name: str) -> SceneSpec:
+    try:
+        return SCENES[name]()
+    except KeyError:
+        raise ValueError(f"unknown scene {name!r}; known scenes: {', '.join(SCENES)}") from None
