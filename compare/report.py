@@ -14,6 +14,7 @@ from . import imageio, metrics, pairings, plots
 from .jobs import STOCHASTIC
 
 ENGINE_ORDER = ("ANALYTIC", "CYCLES", "BXDF_LAB", "POVRAY_RENDER")
+POV_SATURATION = 65534.5 / 65535.0
 
 
 def to_display(image):
@@ -115,7 +116,14 @@ def analyse(run_dir, spec, results):
                          "error": raise_note})
             pair_list.append(item)
             continue
-        figures = metrics.compare(images[a], images[b], variances[a], variances[b], mask)
+        pair_mask = np.ones(images[a].shape[:2], bool) if mask is None else mask.copy()
+        # POV-Ray's 16-bit PNG clips at 1: a clipped pixel says nothing about the shading.
+        saturated = np.zeros_like(pair_mask)
+        for engine in (a, b):
+            if engine == "POVRAY_RENDER":
+                saturated |= images[engine].max(axis=-1) >= POV_SATURATION
+        pair_mask &= ~saturated
+        figures = metrics.compare(images[a], images[b], variances[a], variances[b], pair_mask)
         ok = metrics.passes(figures)
         heat = os.path.join(scene_dir, f"diff_{a}_vs_{b}.png")
         plots.heatmap(figures["diff_image"], figures["z_image"], figures["fail_image"],
@@ -123,7 +131,8 @@ def analyse(run_dir, spec, results):
         item.update({k: v for k, v in figures.items() if not k.endswith("_image")})
         item.update({"pass": ok, "flagged": label == "exact" and not ok,
                      "heatmap": os.path.relpath(heat, run_dir),
-                     "edge_pixels_excluded": int((~mask).sum()) if mask is not None else 0})
+                     "edge_pixels_excluded": int((~mask).sum()) if mask is not None else 0,
+                     "saturated_pixels_excluded": int(saturated.sum())})
         if label == "approximate":
             item["approximations"] = pairings.approximations(spec, a, b)
             item["mapping"] = {e: {m: v.get("renders_as", "")
@@ -214,7 +223,8 @@ def render_html(summary):
              f"({summary['thresholds']['rel_tol']:g}·value + {summary['thresholds']['abs_tol']:g})²"
              "; an exact pairing passes when at most "
              f"{100 * summary['thresholds']['pass_fraction']:g}% of pixels fail. Silhouette "
-             "pixels are excluded where an analytic image exists. Data: "
+             "pixels are excluded where an analytic image exists, and pixels that POV-Ray's 16-bit PNG "
+             "clips at 1. Data: "
              "<a href=\"summary.json\">summary.json</a>.</p>",
              _overview(summary)]
     for scene in summary["scenes"]:

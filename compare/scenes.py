@@ -1,8 +1,8 @@
 """The reference scenes. Each is a function returning a SceneSpec; `bpy_build.build(spec)` turns it
 into a bpy scene inside Blender and `analytic.render(spec)` computes its closed-form image.
 
-Light strengths are chosen so that a 0.8-albedo surface comes out near 0.5 (no clipping in any
-engine); the sun's irradiance is pi * srgb_to_linear(0.9) so that POV-Ray's three-digit sRGB light
+Light strengths are chosen so that a 0.8-albedo surface comes out near 0.5 (POV-Ray's 16-bit PNG
+clips at 1); the sun's irradiance is pi * srgb_to_linear(0.9) so that POV-Ray's three-digit sRGB light
 colour represents the calibrated value exactly (see engine_setup)."""
 from __future__ import annotations
 
@@ -131,7 +131,7 @@ def _cornell_walls():
 def cornell():
     diffuse = Material("box_diffuse", "lambertian", {"reflectance": (0.73, 0.73, 0.73)})
     glossy = Material("sphere_glossy", "cycles_glossy",
-                      {"color": (0.8, 0.8, 0.8), "distribution": "ggx", "roughness": 0.35})
+                      {"color": (0.8, 0.8, 0.8), "distribution": "ggx", "roughness": 0.5})
     gold = Material("sphere_gold", "microfacet",
                     {"reflectance": (1.0, 1.0, 1.0), "distribution": "ggx",
                      "alpha_x": 0.05, "alpha_y": 0.05, "shadowing": "smith",
@@ -149,9 +149,9 @@ def cornell():
     return SceneSpec(
         name="cornell",
         description="Cornell-like room: diffuse box, glossy, gold and glass spheres, global "
-                    "illumination (4 bounces), one point light under the ceiling",
+                    "illumination (4 bounces), one point light in the upper middle of the room",
         camera=Camera(location=(0.0, -3.9, 1.0), look_at=(0.0, 0.0, 1.0), lens_mm=45.0),
-        objects=objects, lights=(PointLight(location=(0.0, 0.0, 1.85), intensity=6.0),),
+        objects=objects, lights=(PointLight(location=(0.0, -0.2, 1.45), intensity=1.2),),
         max_bounces=4, spp=128, resolution=(128, 128), povray_radiosity=True, tags=("gi",))
 
 

@@ -1,0 +1,44 @@
+"""Shared runs of the harness for the compare tests: each fixture renders once per session."""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+if REPO not in sys.path:
+    sys.path.insert(0, REPO)
+
+PYTHON = "/usr/bin/python3"
+# The deliberately wrong material: POV-Ray renders the sun sphere with albedo 0.55 instead of 0.7.
+WRONG_MATERIAL = "POVRAY_RENDER:lambert_grey:reflectance=[0.55,0.55,0.55]"
+MAIN_SCENES = ["lit_lambertian", "lit_cycles_glossy_ggx", "lit_oren_nayar", "sun_sphere"]
+
+
+def run_compare(out_dir, *args, env=None, timeout=600):
+    cmd = [PYTHON, "-m", "compare", "run", "--out", str(out_dir), "--quiet", *args]
+    proc = subprocess.run(cmd, cwd=REPO, capture_output=True, text=True, timeout=timeout,
+                          env=env or dict(os.environ))
+    assert proc.returncode == 0, f"{cmd} failed:\n{proc.stdout}\n{proc.stderr}"
+    runs = sorted(os.listdir(out_dir))
+    assert runs, "no run folder written"
+    run_dir = os.path.join(str(out_dir), runs[-1])
+    with open(os.path.join(run_dir, "summary.json"), encoding="utf-8") as fh:
+        return run_dir, json.load(fh)
+
+
+def scene(summary, name):
+    return next(s for s in summary["scenes"] if s["name"] == name)
+
+
+def pairing(scene_entry, a, b):
+    return next(p for p in scene_entry["pairings"] if {p["a"], p["b"]} == {a, b})
+
+
+@pytest.fixture(scope="session")
+def main_run(tmp_path_factory):
+    """Four small scenes at 32x32, 8 spp, every engine, one material deliberately wrong."""
+    out = tmp_path_factory.mktemp("main")
+    return run_compare(out, "--scenes", *MAIN_SCENES, "--res", "32", "32", "--spp", "8",
+                       "--override", WRONG_MATERIAL)

@@ -1,0 +1,86 @@
+"""Unit tests of the diff figures, the z-test and the pairing labels (no Blender)."""
+import numpy as np
+import pytest
+
+from compare import analytic, metrics, pairings, scenes
+
+
+def _noisy(rng, mean, sigma):
+    return mean + rng.normal(0.0, sigma, mean.shape)
+
+
+def test_z_test_passes_noise_and_fails_a_bias():
+    rng = np.random.default_rng(7)
+    truth = np.full((64, 64, 3), 0.4)
+    halves_a = [_noisy(rng, truth, 0.05) for _ in range(2)]
+    halves_b = [_noisy(rng, truth, 0.05) for _ in range(2)]
+    a, b = sum(halves_a) / 2, sum(halves_b) / 2
+    var_a = metrics.variance_of_mean(*halves_a)
+    var_b = metrics.variance_of_mean(*halves_b)
+    same = metrics.compare(a, b, var_a, var_b)
+    assert same["z_fail_fraction"] <= metrics.PASS_FRACTION and metrics.passes(same)
+    assert same["noise_rms"] == pytest.approx(0.05 * np.sqrt(0.5), rel=0.1)
+    biased = metrics.compare(a * 1.3, b, var_a * 1.69, var_b)
+    assert not metrics.passes(biased) and biased["z_fail_fraction"] > 0.5
+
+
+def test_deterministic_images_use_the_tolerance_only():
+    b = np.full((8, 8, 3), 0.5)
+    close = metrics.compare(b * (1 + 0.5 * metrics.REL_TOL), b)
+    assert close["z_fail_fraction"] == 0.0
+    far = metrics.compare(b * 1.05, b)
+    assert far["z_fail_fraction"] == 1.0
+    assert far["rmse"] == pytest.approx(0.025)
+    assert far["max_abs"] == pytest.approx(0.025)
+    assert far["psnr"] == pytest.approx(10 * np.log10(0.525 ** 2 / 0.025 ** 2))
+    assert far["ratio_mean"] == pytest.approx(1.05)
+
+
+def test_edge_mask_marks_silhouettes_only():
+    ids = -np.ones((9, 9), int)
+    ids[3:6, 3:6] = 0
+    edge = metrics.edge_mask(ids)
+    assert edge[4, 4] == False  # noqa: E712 - numpy bool
+    assert edge[3, 3] and edge[2, 2] and not edge[0, 0]
+
+
+def test_labels_follow_the_renderers_facts():
+    lam = scenes.get("lit_lambertian")
+    assert all(pairings.label(lam, a, b) == "exact" for a, b in pairings.pairs(
+        ["ANALYTIC", "CYCLES", "BXDF_LAB", "POVRAY_RENDER"]))
+    ggx = scenes.get("lit_cycles_glossy_ggx")
+    assert pairings.label(ggx, "CYCLES", "BXDF_LAB") == "exact"
+    assert pairings.label(ggx, "POVRAY_RENDER", "CYCLES") == "approximate"
+    on = scenes.get("lit_oren_nayar")
+    assert pairings.label(on, "CYCLES", "ANALYTIC") == "approximate"
+    assert pairings.label(on, "BXDF_LAB", "ANALYTIC") == "exact"
+    assert pairings.label(scenes.get("furnace"), "POVRAY_RENDER", "ANALYTIC") == "approximate"
+    assert pairings.label(scenes.get("cornell"), "CYCLES", "BXDF_LAB") == "approximate"
+
+
+def test_analytic_lambert_sphere_matches_the_formula_at_the_centre():
+    spec = scenes.get("lit_lambertian")
+    image, ids = analytic.render(spec)
+    h, w = ids.shape
+    # The centre pixel's ray hits the sphere almost at (0, -1, 0).
+    p = np.array([0.0, -1.0, 0.0])
+    light = spec.lights[0]
+    to_light = np.array(light.location) - p
+    d = np.linalg.norm(to_light)
+    cos_i = np.dot(to_light / d, [0.0, -1.0, 0.0])
+    expected = np.array(spec.objects[0].material.params["reflectance"]) / np.pi * cos_i \
+        * light.intensity / d ** 2
+    centre = image[h // 2 - 1:h // 2 + 1, w // 2 - 1:w // 2 + 1].mean(axis=(0, 1))
+    assert centre == pytest.approx(expected, rel=2e-3)
+    assert ids[0, 0] == -1 and (image[0, 0] == 0).all()
+
+
+def test_scenes_that_claim_analytic_truth_render_it():
+    for name in scenes.DEFAULT_SCENES:
+        spec = scenes.get(name)
+        if spec.has_analytic_truth():
+            image, _ = analytic.render(spec)
+            assert np.isfinite(image).all() and (image >= 0).all() and image.max() > 0.05
+        else:
+            with pytest.raises(ValueError):
+                analytic.render(spec)
