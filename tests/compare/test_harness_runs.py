@@ -63,7 +63,8 @@ def test_deliberately_wrong_material_is_caught_and_flagged(main_run):
     wrong = pairing(sun, "POVRAY_RENDER", "ANALYTIC")
     assert wrong["label"] == "exact"
     assert wrong["pass"] is False and wrong["flagged"] is True
-    assert wrong["z_fail_fraction"] > 0.5
+    # Background and unlit pixels agree whatever the albedo: most lit pixels must fail.
+    assert wrong["z_fail_fraction"] > 5 * summary["thresholds"]["pass_fraction"]
     assert abs(wrong["ratio_mean"] - 0.55 / 0.7) < 0.02
     # The engines that were not tampered with still agree.
     assert pairing(sun, "CYCLES", "ANALYTIC")["pass"] is True
