@@ -12,15 +12,15 @@ def _noisy(rng, mean, sigma):
 def test_z_test_passes_noise_and_fails_a_bias():
     rng = np.random.default_rng(7)
     truth = np.full((64, 64, 3), 0.4)
-    halves_a = [_noisy(rng, truth, 0.05) for _ in range(2)]
-    halves_b = [_noisy(rng, truth, 0.05) for _ in range(2)]
+    halves_a = [_noisy(rng, truth, 0.02) for _ in range(2)]
+    halves_b = [_noisy(rng, truth, 0.02) for _ in range(2)]
     a, b = sum(halves_a) / 2, sum(halves_b) / 2
     var_a = metrics.variance_of_mean(*halves_a)
     var_b = metrics.variance_of_mean(*halves_b)
     same = metrics.compare(a, b, var_a, var_b)
     assert same["z_fail_fraction"] <= metrics.PASS_FRACTION and metrics.passes(same)
-    # Each mean of two halves has variance 0.05^2/2; the difference of two such means 0.05^2.
-    assert same["noise_rms"] == pytest.approx(0.05, rel=0.1)
+    # Each mean of two halves has variance 0.02^2/2; the difference of two such means 0.02^2.
+    assert same["noise_rms"] == pytest.approx(0.02, rel=0.1)
     biased = metrics.compare(a * 1.3, b, var_a * 1.69, var_b)
     assert not metrics.passes(biased) and biased["z_fail_fraction"] > 0.5
 
