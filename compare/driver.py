@@ -92,6 +92,11 @@ def main():
             "renders_as": material_setup.summarize(materials[mat_spec.name], engine)}
 
     scene = bpy.context.scene
+    if engine == "POVRAY_RENDER" and any(m["setup_by"] == "interim"
+                                         for m in meta["materials"].values()):
+        # The add-on's "Set Up POV-Ray Material" calibrates the lights itself.
+        from compare import interim_material_mapping  # INTERIM: goes with that module
+        interim_material_mapping.calibrate_povray_lights(spec)
     if engine == "POVRAY_RENDER":
         basename = f"{job['scene']}_pov"
         meta["settings"] = engine_setup.configure_povray(spec, out_dir, basename, job["threads"])

@@ -2,8 +2,8 @@
 
 Facts from reference/renderers.md: Cycles with radius-0 lights, no clamping, no denoising, no adaptive
 sampling, pixel-centre sampling through GAUSSIAN width 0.01; POV-Ray with linear 16-bit PNG output
-(+FN16 File_Gamma=1.0), radiosity only where the scene asks for global illumination, and point lights
-recalibrated to a true inverse-square fall-off."""
+(+FN16 File_Gamma=1.0), no anti-aliasing, radiosity only where the scene asks for global
+illumination. (POV-Ray's light calibration belongs to the material set-up: see material_setup.)"""
 from __future__ import annotations
 
 import math
@@ -11,19 +11,7 @@ import os
 
 import bpy
 
-from .scene_spec import PointLight, SceneSpec, SunLight
-
-# POV-Ray's exporter writes a light colour as `color srgb <%.3g ...>`: choose a colour that three
-# digits represent exactly and put the rest of the calibration into the fade distance (%.6f).
-POV_POINT_SRGB = 100.0
-
-
-def srgb_to_linear(c: float) -> float:
-    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
-
-
-def linear_to_srgb(c: float) -> float:
-    return c * 12.92 if c <= 0.0031308 else 1.055 * c ** (1.0 / 2.4) - 0.055
+from .scene_spec import SceneSpec
 
 
 def common_settings(spec: SceneSpec):
@@ -102,38 +90,23 @@ def configure_povray(spec: SceneSpec, work_dir: str, basename: str, threads: int
     pov.radio_enable = spec.povray_radiosity
     pov.max_trace_level = max(5, 2 * spec.max_bounces + 2)
     scene.world.pov.horizon_color = spec.world_color
-    calibration = _calibrate_povray_lights(spec)
     return {"radiosity": spec.povray_radiosity, "antialias": False,
             "max_trace_level": pov.max_trace_level, "switches": pov.command_line_switches,
-            "lights": calibration}
+            "lights": povray_lights_as_exported()}
 
 
-def _calibrate_povray_lights(spec: SceneSpec) -> list:
-    """POV-Ray ignores light energy and attenuates a point light by 2 / (1 + (d/D)^2) with
-    D = sqrt(distance/2); for D << d that is 2 D^2 / d^2. Its diffuse term has no 1/pi, so a
-    Lambertian match needs colour C with C * 2 D^2 = I / pi; a sun (parallel light, no fade) needs
-    C = E / pi."""
-    notes = []
-    lights = [o for o in bpy.context.scene.objects if o.type == "LIGHT"]
-    lights.sort(key=lambda o: int(o.name.rsplit("_", 1)[1]))
-    for obj, light in zip(lights, spec.lights):
-        data = obj.data
-        if isinstance(light, PointLight):
-            c_lin = srgb_to_linear(POV_POINT_SRGB)
-            # distance = 2 D^2 = I_max / (pi C): the brightest channel gets exactly C.
-            i_max = light.intensity * max(light.color)
-            data.distance = i_max / (math.pi * c_lin)
-            data.falloff_type = "INVERSE_SQUARE"
-            data.color = tuple(linear_to_srgb(c_lin * ch / max(light.color)) for ch in light.color)
-            fade = math.sqrt(data.distance / 2.0)
-            notes.append({"light": obj.name, "srgb_color": list(data.color),
-                          "fade_distance": fade, "fade_power": 2,
-                          "relative_error_at_1m": fade * fade})
-        elif isinstance(light, SunLight):
-            data.color = tuple(linear_to_srgb(light.irradiance * ch / math.pi)
-                               for ch in light.color)
-            notes.append({"light": obj.name, "srgb_color": list(data.color), "parallel": True})
-    return notes
+def povray_lights_as_exported() -> list:
+    """What render_povray will write for each light (after the calibration)."""
+    out = []
+    for obj in bpy.context.scene.objects:
+        if obj.type == "LIGHT":
+            data = obj.data
+            entry = {"light": obj.name, "type": data.type, "srgb_color": list(data.color)}
+            if data.type != "SUN":
+                entry["fade_distance"] = math.sqrt(data.distance / 2.0)
+                entry["falloff"] = data.falloff_type
+            out.append(entry)
+    return out
 
 
 def _threads(scene, threads):

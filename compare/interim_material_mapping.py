@@ -1,7 +1,7 @@
-"""INTERIM: the model -> Cycles node tree / POV-Ray finish mapping, used only while the bxdf_lab
-add-on's "Set Up Cycles Material" / "Set Up POV-Ray Material" operators have not landed on main.
-Delete this file (and its one import in material_setup.py) once they have: the add-on owns the
-mapping, and there must not be two copies of it.
+"""INTERIM: the model -> Cycles node tree / POV-Ray finish mapping and POV-Ray's light calibration,
+used only while the bxdf_lab add-on's "Set Up Cycles Material" / "Set Up POV-Ray Material" operators
+have not landed on main. Delete this file (and its imports in material_setup.py and driver.py) once
+they have: the add-on owns the mapping, and there must not be two copies of it.
 
 Exact where the formulas agree (reference/renderers.md): Lambert everywhere, Cycles' own Oren-Nayar
 and Glossy (GGX/Beckmann, separable Smith, F = 1) in Cycles, Lambert in POV-Ray with the light
@@ -9,6 +9,20 @@ calibration of engine_setup. Everything else is a best approximation."""
 from __future__ import annotations
 
 import math
+
+from .scene_spec import PointLight, SunLight
+
+# A fade distance of about 1 cm keeps POV-Ray's 2/(1 + (d/D)^2) within (D/d)^2 ~ 1e-5 of 2 D^2/d^2
+# at scene distances; the exporter writes the colour as `srgb <%.3g>` and D as %.6f.
+POV_FADE_DISTANCE = 0.01
+
+
+def srgb_to_linear(c: float) -> float:
+    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+
+def linear_to_srgb(c: float) -> float:
+    return c * 12.92 if c <= 0.0031308 else 1.055 * c ** (1.0 / 2.4) - 0.055
 
 
 def _rgb(value):
@@ -164,3 +178,31 @@ def setup_povray(material, model, params):
         pov.mirror_color = (1.0, 1.0, 1.0)
     else:
         raise NotImplementedError(f"no interim POV-Ray mapping for model '{model}'")
+
+
+def calibrate_povray_lights(spec) -> None:
+    """POV-Ray ignores light energy and attenuates a point light by 2 / (1 + (d/D)^2) with
+    D = sqrt(distance/2); for D << d that is 2 D^2 / d^2. Its diffuse term has no 1/pi, so a
+    Lambertian match needs colour C with C * 2 D^2 = I / pi; a sun (parallel light, no fade) needs
+    C = E / pi."""
+    import bpy  # noqa: PLC0415 - inside Blender only
+
+    lights = [o for o in bpy.context.scene.objects if o.type == "LIGHT"]
+    lights.sort(key=lambda o: int(o.name.rsplit("_", 1)[1]))
+    for obj, light in zip(lights, spec.lights):
+        data = obj.data
+        if isinstance(light, PointLight):
+            intensity = [light.intensity * ch for ch in light.color]
+            peak = max(range(3), key=lambda k: intensity[k])
+            # The colour POV-Ray will read back after the exporter's 3-digit formatting ...
+            written = [float(f"{linear_to_srgb(i / (math.pi * 2 * POV_FADE_DISTANCE ** 2)):.3g}")
+                       for i in intensity]
+            # ... and the fade distance that makes C * 2 D^2 = I / pi hold for it exactly.
+            fade = round(math.sqrt(intensity[peak] / (math.pi * 2 * srgb_to_linear(written[peak]))),
+                         6)
+            data.distance = 2.0 * fade * fade
+            data.falloff_type = "INVERSE_SQUARE"
+            data.color = written
+        elif isinstance(light, SunLight):
+            data.color = tuple(linear_to_srgb(light.irradiance * ch / math.pi)
+                               for ch in light.color)

@@ -63,7 +63,17 @@ def setup(material, obj, model, params, engine) -> str:
 
 
 def summarize(material, engine) -> str:
-    """A one-line account of what the engine renders for this material."""
+    """A one-line account of what the engine renders for this material (plus the add-on's own
+    account of its mapping, when it made it)."""
+    text = _read_back(material, engine)
+    settings = getattr(material, "bxdf_lab", None)
+    note = {"CYCLES": "cycles_mapping", "POVRAY_RENDER": "pov_mapping"}.get(engine)
+    if settings is not None and note and getattr(settings, note, ""):
+        text += f" [add-on: {getattr(settings, note)}]"
+    return text
+
+
+def _read_back(material, engine) -> str:
     if engine == "CYCLES":
         if not material.use_nodes:
             return "no node tree (Cycles renders its default)"
