@@ -159,10 +159,11 @@ def material_plots(run_dir, specs):
                 lobe = os.path.join(plot_dir, f"{material.name}_lobe.png")
                 albedo = os.path.join(plot_dir, f"{material.name}_albedo.png")
                 plots.lobe_plot(material, lobe)
-                rho = plots.albedo_plot(material, albedo)
+                theta_o, rho = plots.albedo_plot(material, albedo)
                 entry.update({"lobe_plot": os.path.relpath(lobe, run_dir),
                               "albedo_plot": os.path.relpath(albedo, run_dir),
-                              "albedo_at_normal": rho[0].tolist()})
+                              "albedo_curve": {"theta_o_deg": np.degrees(theta_o).tolist(),
+                                               "rho": rho.tolist()}})
             except (NotImplementedError, ValueError) as exc:
                 entry["plot_error"] = str(exc)
             out[material.name] = entry
