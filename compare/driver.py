@@ -124,6 +124,11 @@ def main():
                 raise RuntimeError(f"{engine} wrote no image (render failed) for seed {seed}")
             meta["renders"].append({"seed": seed, "seconds": seconds,
                                     "image": os.path.basename(image)})
+        # One record for both halves: samples are per render, the full image has twice as many.
+        meta["settings"].pop("seed", None)
+        meta["settings"]["seeds"] = job["seeds"]
+        meta["settings"]["samples_per_render"] = meta["settings"].pop("samples")
+        meta["settings"]["samples_total"] = job["spp"] * len(job["seeds"])
     with open(meta_path, "w", encoding="utf-8") as fh:
         json.dump(meta, fh, indent=1)
 
