@@ -54,6 +54,17 @@ def _apply_overrides(spec, overrides):
     return replace(spec, objects=tuple(fix(o) for o in spec.objects))
 
 
+def _raise_engine_error(engine, seed):
+    """Blender swallows exceptions inside RenderEngine.render and may still write an (empty)
+    image: the BXDF_LAB engine records its error in bxdf_lab.engine.last_error."""
+    if engine != "BXDF_LAB":
+        return
+    module = sys.modules.get("bxdf_lab.engine")
+    error = getattr(module, "last_error", "") if module else ""
+    if error:
+        raise RuntimeError(f"BXDF_LAB render failed for seed {seed}: {error}")
+
+
 def main():
     job = _job_from_argv()
     for path in [job["repo_root"]] + job.get("python_paths", []):
@@ -119,6 +130,7 @@ def main():
             start = time.perf_counter()
             bpy.ops.render.render(write_still=True)
             seconds = time.perf_counter() - start
+            _raise_engine_error(engine, seed)
             if not os.path.isfile(image):
                 # Exceptions inside a RenderEngine are swallowed by Blender: no file is the sign.
                 raise RuntimeError(f"{engine} wrote no image (render failed) for seed {seed}")

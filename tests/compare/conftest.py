@@ -10,6 +10,13 @@ REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 if REPO not in sys.path:
     sys.path.insert(0, REPO)
 
+from compare import runner  # noqa: E402
+
+# The harness finds the compiled `bxdf` module there; so do the tests that ask if it exists.
+for _path in runner.bxdf_python_paths():
+    if _path not in sys.path:
+        sys.path.append(_path)
+
 PYTHON = "/usr/bin/python3"
 # The deliberately wrong material: POV-Ray renders the sun sphere with albedo 0.55 instead of 0.7.
 WRONG_MATERIAL = "POVRAY_RENDER:lambert_grey:reflectance=[0.55,0.55,0.55]"

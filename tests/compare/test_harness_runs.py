@@ -6,9 +6,14 @@ from conftest import REPO, pairing, run_compare, scene
 
 
 def _bxdf_lab_ready():
-    """The BXDF_LAB engine can render once the add-on package and the compiled module exist."""
+    """The BXDF_LAB engine can render once the add-on package and the compiled module with its
+    renderer (bxdf.render) exist."""
     addon = os.path.join(REPO, "blender_addon", "bxdf_lab", "__init__.py")
-    return os.path.isfile(addon) and importlib.util.find_spec("bxdf") is not None
+    if not os.path.isfile(addon) or importlib.util.find_spec("bxdf") is None:
+        return False
+    import bxdf
+
+    return hasattr(bxdf, "render")
 
 
 def test_every_engine_runs_or_is_recorded_as_failed_with_its_log(main_run):
