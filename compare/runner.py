@@ -109,11 +109,13 @@ def _execute(job_list, scheduler, workers, quiet):
         from distributed import Client, as_completed  # noqa: PLC0415 - only with --scheduler
 
         with Client(scheduler, timeout="30s") as client:
-            futures = [client.submit(jobs.run_job, job, pure=False,
-                                     key=f"compare-{job['scene']}-{job['engine']}-{time.time_ns()}")
-                       for job in job_list]
+            job_by_key, futures = {}, []
+            for job in job_list:
+                key = f"compare-{job['scene']}-{job['engine']}-{time.time_ns()}"
+                job_by_key[key] = job
+                futures.append(client.submit(jobs.run_job, job, pure=False, key=key))
             for future in as_completed(futures):
-                result = _result_or_failure(future.result, future_job(futures, job_list, future))
+                result = _result_or_failure(future.result, job_by_key[future.key])
                 results.append(result)
                 progress.advance(result)
     else:
@@ -124,10 +126,6 @@ def _execute(job_list, scheduler, workers, quiet):
                 results.append(result)
                 progress.advance(result)
     return results
-
-
-def future_job(futures, job_list, future):
-    return job_list[futures.index(future)]
 
 
 def _result_or_failure(get, job):
