@@ -97,7 +97,7 @@ def cycles_glossy(p):
         def g1(w):
             a = 1.0 / np.maximum(alpha * np.sqrt(_tan2(w)), 1e-12)
             a = np.minimum(a, 1.6)      # the rational fit is used below 1.6, 1 above
-            return np.where(a < 1.6, (3.535 * a + 2.181 * a * a) / (1 + 2.181 * a + 2.577 * a * a),
+            return np.where(a < 1.6, (3.535 * a + 2.181 * a * a) / (1 + 2.276 * a + 2.577 * a * a),
                             1.0)
     else:
         raise ValueError(f"distribution must be 'ggx' or 'beckmann', got {dist!r}")
