@@ -48,6 +48,9 @@ def lobe_plot(material, path):
         value = _luminance(np.asarray(model.f(wo, wi), float)) * np.cos(theta_i)
         ax.plot(-theta_i, value, label=f"θo {deg:g}°")   # wo on the +x side, drawn on the right
     ax.set_title(f"{material.name}: f·cosθi", fontsize=8)
+    if not any(line.get_ydata().any() for line in ax.get_lines()):
+        ax.text(0.5, 0.35, "delta lobe: f = 0\noff the specular directions", fontsize=7,
+                ha="center", transform=ax.transAxes)
     ax.tick_params(labelsize=6)
     ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(-0.15, -0.1))
     if baked:

@@ -76,6 +76,9 @@ def run(scene_names, engines, spp=None, resolution=None, out_root="out", schedul
     specs = [scenes.get(name) for name in scene_names]
     run_dir = new_run_dir(out_root)
     python_paths = bxdf_python_paths()
+    for path in python_paths:   # the report's plots use `bxdf` in this process too
+        if path not in sys.path:
+            sys.path.append(path)
     threads = max(1, (os.cpu_count() or 2) // max(workers, 1)) if scheduler is None else 0
     job_list = []
     for spec in specs:
