@@ -6,6 +6,8 @@ only (plus the Lambertian furnace). One ray through each pixel centre, the same 
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from .scene_spec import PointLight, SceneSpec, Sphere, SunLight, is_lambert_furnace
@@ -70,8 +72,22 @@ def _to_local(v, t, b, n):
                      np.einsum("ij,ij->i", v, n)], axis=1)
 
 
-def render(spec: SceneSpec):
-    """(image float32 HxWx3, object id int HxW with -1 for background)."""
+# Blender's spheres are UV spheres of 128 segments (bpy_build): facets span DELTA = 2 pi / 128, and
+# the interpolated normal at the facet hit differs from the true sphere normal by about
+# DELTA^2 / 8 (sagitta), plus the sagitta's tangential shift of the hit point, which grows with
+# tan(view angle). The image's sensitivity to a normal error of that size is the geometric tolerance.
+TESSELLATION_DELTA = 2.0 * np.pi / 128.0
+MAX_VIEW_TAN = 20.0
+
+
+@dataclass
+class AnalyticImage:
+    image: np.ndarray              # float32 (H, W, 3), linear
+    object_ids: np.ndarray         # int (H, W), -1 for background
+    geometry_tolerance: np.ndarray  # float32 (H, W, 3): |dL| for the tessellation's normal error
+
+
+def render(spec: SceneSpec) -> AnalyticImage:
     if not spec.has_analytic_truth():
         raise ValueError(f"scene '{spec.name}' has no analytic truth")
     w, h = spec.resolution
@@ -86,6 +102,7 @@ def render(spec: SceneSpec):
         t_hit[closer], obj_id[closer] = t[closer], i
 
     image = np.zeros((len(dirs), 3))
+    tolerance = np.zeros((len(dirs), 3))
     image[obj_id < 0] = spec.world_color
     if is_lambert_furnace(spec):
         hit = obj_id >= 0
@@ -95,14 +112,32 @@ def render(spec: SceneSpec):
         for i, s in enumerate(spheres):
             sel = np.nonzero(obj_id == i)[0]
             if len(sel):
-                image[sel] = _shade(spec, spheres, s, origin, dirs[sel], t_hit[sel])
-    return (image.reshape(h, w, 3).astype(np.float32), obj_id.reshape(h, w))
+                image[sel], tolerance[sel] = _shade_with_tolerance(
+                    spec, spheres, s, origin, dirs[sel], t_hit[sel])
+    return AnalyticImage(image.reshape(h, w, 3).astype(np.float32), obj_id.reshape(h, w),
+                         tolerance.reshape(h, w, 3).astype(np.float32))
 
 
-def _shade(spec, spheres, sphere, origin, dirs, t):
+def _shade_with_tolerance(spec, spheres, sphere, origin, dirs, t):
     model = make_model(sphere.material.model, sphere.material.params)
     p = origin + dirs * t[:, None]
     n = (p - np.asarray(sphere.center, float)) / sphere.radius
+    value = _shade(spec, spheres, model, p, n, dirs)
+    cos_v = np.clip(-np.einsum("ij,ij->i", dirs, n), 1e-6, 1.0)
+    tan_v = np.minimum(np.sqrt(1.0 - cos_v ** 2) / cos_v, MAX_VIEW_TAN)
+    eps = TESSELLATION_DELTA ** 2 / 8.0 * (1.0 + tan_v)
+    tangent, bitangent = _frame(n)
+    deviation = np.zeros_like(value)
+    for direction in (tangent, -tangent, bitangent, -bitangent):
+        tilted = n + eps[:, None] * direction
+        tilted /= np.linalg.norm(tilted, axis=1, keepdims=True)
+        deviation = np.maximum(deviation, np.abs(_shade(spec, spheres, model, p, tilted, dirs)
+                                                 - value))
+    return value, deviation
+
+
+def _shade(spec, spheres, model, p, n, dirs):
+    """Direct light at points p with shading normals n seen along dirs."""
     tangent, bitangent = _frame(n)
     wo = _to_local(-dirs, tangent, bitangent, n)
     out = np.zeros((len(dirs), 3))

@@ -85,10 +85,12 @@ def _run_analytic(job, log_path):
     if job["resolution"]:
         spec = replace(spec, resolution=tuple(job["resolution"]))
     start = time.perf_counter()
-    image, ids = analytic.render(spec)
+    result = analytic.render(spec)
     seconds = time.perf_counter() - start
-    imageio.write_exr(os.path.join(job["out_dir"], "ANALYTIC.exr"), image)
-    np.save(os.path.join(job["out_dir"], "ANALYTIC.ids.npy"), ids)
+    imageio.write_exr(os.path.join(job["out_dir"], "ANALYTIC.exr"), result.image)
+    imageio.write_exr(os.path.join(job["out_dir"], "ANALYTIC.tolerance.exr"),
+                      result.geometry_tolerance)
+    np.save(os.path.join(job["out_dir"], "ANALYTIC.ids.npy"), result.object_ids)
     source = "bxdf (core)" if _bxdf_available() else "interim numpy formulas"
     meta = {"scene": job["scene"], "engine": "ANALYTIC", "f_from": source,
             "renders": [{"seed": None, "seconds": seconds, "image": "ANALYTIC.exr"}]}

@@ -6,16 +6,18 @@ full image is their mean, whose per-pixel variance is estimated as (h1 - h2)^2 /
 3x3 neighbourhood (9 samples of it, so that one unlucky pixel does not make a tiny variance). A
 deterministic image (ANALYTIC, POV-Ray without anti-aliasing) has variance 0.
 
-The test adds a systematic tolerance for what is not noise but not a difference of formulas either:
-Blender's tessellated sphere (interpolated normals), float32 arithmetic and 16-bit PNG quantisation:
-sigma^2 = var_a + var_b + (REL_TOL * max(|a|, |b|) + ABS_TOL)^2. A pixel fails when |z| > Z_CRIT in
-any channel; an exact pairing passes when at most PASS_FRACTION of the compared pixels fail."""
+The test adds systematic tolerances for what is not noise but not a difference of formulas either:
+against an analytic image, the change of the closed form under the normal error of Blender's
+tessellated spheres (analytic.AnalyticImage.geometry_tolerance, per pixel); and float32 arithmetic
+and 16-bit PNG quantisation: sigma^2 = var_a + var_b + geometry^2 + (REL_TOL max(|a|,|b|) +
+ABS_TOL)^2. A pixel fails when |z| > Z_CRIT in any channel; an exact pairing passes when at most
+PASS_FRACTION of the compared pixels fail."""
 from __future__ import annotations
 
 import numpy as np
 
 Z_CRIT = 4.0
-REL_TOL = 0.005
+REL_TOL = 0.001
 ABS_TOL = 2e-4
 PASS_FRACTION = 0.01
 RELMSE_EPSILON = 1e-2
@@ -45,8 +47,9 @@ def edge_mask(object_ids):
     return edge
 
 
-def compare(a, b, var_a=None, var_b=None, mask=None):
-    """Figures of a - b over the pixels where `mask` is true (all if None). Images HxWx3."""
+def compare(a, b, var_a=None, var_b=None, mask=None, systematic=None):
+    """Figures of a - b over the pixels where `mask` is true (all if None). Images HxWx3;
+    `systematic`: a per-pixel tolerance (HxWx3) added in quadrature to the noise."""
     a = np.asarray(a, float)[..., :3]
     b = np.asarray(b, float)[..., :3]
     if a.shape != b.shape:
@@ -64,7 +67,8 @@ def compare(a, b, var_a=None, var_b=None, mask=None):
     mse = float(np.mean(diff ** 2))
     peak = float(max(np.max(np.abs(ref)), np.max(np.abs(a[mask])), 1e-12))
     tolerance = REL_TOL * np.maximum(np.abs(a), np.abs(b)) + ABS_TOL
-    sigma = np.sqrt(var_a + var_b + tolerance ** 2)
+    geometry = 0.0 if systematic is None else np.asarray(systematic, float)[..., :3]
+    sigma = np.sqrt(var_a + var_b + geometry ** 2 + tolerance ** 2)
     z = (a - b) / sigma
     z_abs = np.max(np.abs(z), axis=-1)
     fail = (z_abs > Z_CRIT) & mask

@@ -44,7 +44,8 @@ def _load_meta(render_dir, engine):
 
 
 def _load_engine(run_dir, spec, engine, result):
-    """(entry for summary.json, image, variance or None, object ids or None)."""
+    """(entry for summary.json, image, variance or None, truth or None), where truth holds the
+    analytic image's object ids and geometric tolerance."""
     render_dir = os.path.join(run_dir, "renders", spec.name)
     entry = {"status": result["status"], "seconds": None, "wall_seconds": result["wall_seconds"],
              "image": None, "log": result.get("log"), "message": result.get("message", "")}
@@ -57,7 +58,7 @@ def _load_engine(run_dir, spec, engine, result):
         entry["materials"] = meta.get("materials", {})
         if "f_from" in meta:
             entry["f_from"] = meta["f_from"]
-        variance, ids = None, None
+        variance, truth = None, None
         if engine in STOCHASTIC:
             halves = [imageio.read(os.path.join(render_dir, r["image"])) for r in meta["renders"]]
             image = (halves[0] + halves[1]) / 2.0
@@ -68,9 +69,11 @@ def _load_engine(run_dir, spec, engine, result):
             path = os.path.join(render_dir, meta["renders"][0]["image"])
             image = imageio.read(path)
             if engine == "ANALYTIC":
-                ids = np.load(os.path.join(render_dir, "ANALYTIC.ids.npy"))
+                truth = {"ids": np.load(os.path.join(render_dir, "ANALYTIC.ids.npy")),
+                         "geometry": imageio.read(os.path.join(render_dir,
+                                                               "ANALYTIC.tolerance.exr"))}
         entry["image"] = os.path.relpath(path, run_dir)
-        return entry, image, variance, ids
+        return entry, image, variance, truth
     except Exception as exc:  # noqa: BLE001 - a broken output is a failed engine, not a lost run
         entry["status"] = "failed"
         entry["message"] = f"output unreadable: {type(exc).__name__}: {exc}"
@@ -80,18 +83,19 @@ def _load_engine(run_dir, spec, engine, result):
 def analyse(run_dir, spec, results):
     scene_dir = os.path.join(run_dir, "report", spec.name)
     os.makedirs(scene_dir, exist_ok=True)
-    engines, images, variances, ids = {}, {}, {}, None
+    engines, images, variances, truth = {}, {}, {}, None
     for engine in ENGINE_ORDER:
         if engine not in results:
             continue
-        entry, image, variance, object_ids = _load_engine(run_dir, spec, engine, results[engine])
+        entry, image, variance, analytic_truth = _load_engine(run_dir, spec, engine,
+                                                              results[engine])
         if image is not None:
             images[engine], variances[engine] = image, variance
             display = os.path.join(scene_dir, f"{engine}.png")
             imageio.write_png8(display, to_display(image))
             entry["display"] = os.path.relpath(display, run_dir)
-        if object_ids is not None:
-            ids = object_ids
+        if analytic_truth is not None:
+            truth = analytic_truth
         engines[engine] = entry
 
     cycles_seconds = engines.get("CYCLES", {}).get("seconds")
@@ -100,7 +104,8 @@ def analyse(run_dir, spec, results):
             entry["speed_vs_cycles"] = cycles_seconds / entry["seconds"]
 
     shapes = {img.shape for img in images.values()}
-    mask = ~metrics.edge_mask(ids) if ids is not None else None
+    mask = ~metrics.edge_mask(truth["ids"]) if truth is not None else None
+    geometry = truth["geometry"] if truth is not None else None
     pair_list = []
     if len(shapes) > 1:
         for engine in images:
@@ -123,7 +128,8 @@ def analyse(run_dir, spec, results):
             if engine == "POVRAY_RENDER":
                 saturated |= images[engine].max(axis=-1) >= POV_SATURATION
         pair_mask &= ~saturated
-        figures = metrics.compare(images[a], images[b], variances[a], variances[b], pair_mask)
+        figures = metrics.compare(images[a], images[b], variances[a], variances[b], pair_mask,
+                                  systematic=geometry if "ANALYTIC" in (a, b) else None)
         ok = metrics.passes(figures)
         heat = os.path.join(scene_dir, f"diff_{a}_vs_{b}.png")
         plots.heatmap(figures["diff_image"], figures["z_image"], figures["fail_image"],
@@ -221,7 +227,9 @@ def render_html(summary):
              "<b>approximate</b> (closest mapping: the difference is the finding). z-test: pixel "
              f"fails when |a−b| &gt; {summary['thresholds']['z_crit']:g} σ in a channel, σ² = "
              "noise variance of both images (from two half-sample renders with different seeds) + "
-             f"({summary['thresholds']['rel_tol']:g}·value + {summary['thresholds']['abs_tol']:g})²"
+             "(against ANALYTIC) the closed form's change under the tessellated spheres' normal "
+             f"error² + ({summary['thresholds']['rel_tol']:g}·value + "
+             f"{summary['thresholds']['abs_tol']:g})²"
              "; an exact pairing passes when at most "
              f"{100 * summary['thresholds']['pass_fraction']:g}% of pixels fail. Silhouette "
              "pixels are excluded where an analytic image exists, and pixels that POV-Ray's 16-bit PNG "

@@ -61,7 +61,8 @@ def test_labels_follow_the_renderers_facts():
 
 def test_analytic_lambert_sphere_matches_the_formula_at_the_centre():
     spec = scenes.get("lit_lambertian")
-    image, ids = analytic.render(spec)
+    result = analytic.render(spec)
+    image, ids = result.image, result.object_ids
     h, w = ids.shape
     # The centre pixel's ray hits the sphere almost at (0, -1, 0).
     p = np.array([0.0, -1.0, 0.0])
@@ -80,8 +81,11 @@ def test_scenes_that_claim_analytic_truth_render_it():
     for name in scenes.DEFAULT_SCENES:
         spec = scenes.get(name)
         if spec.has_analytic_truth():
-            image, _ = analytic.render(spec)
+            result = analytic.render(spec)
+            image = result.image
             assert np.isfinite(image).all() and (image >= 0).all() and image.max() > 0.05
+            assert np.isfinite(result.geometry_tolerance).all()
+            assert (result.geometry_tolerance >= 0).all()
         else:
             with pytest.raises(ValueError):
                 analytic.render(spec)
