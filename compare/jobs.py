@@ -102,11 +102,9 @@ def _run_analytic(job, log_path):
 
 
 def _bxdf_available():
-    try:
-        import bxdf  # noqa: F401, PLC0415
-    except ImportError:
-        return False
-    return True
+    import importlib.util  # noqa: PLC0415
+
+    return importlib.util.find_spec("bxdf") is not None
 
 
 def _tail(path, lines=6):

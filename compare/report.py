@@ -107,18 +107,13 @@ def analyse(run_dir, spec, results):
     mask = ~metrics.edge_mask(truth["ids"]) if truth is not None else None
     geometry = truth["geometry"] if truth is not None else None
     pair_list = []
-    if len(shapes) > 1:
-        for engine in images:
-            engines[engine].setdefault("message", "")
-        raise_note = f"image sizes differ: {sorted(shapes)}"
-    else:
-        raise_note = ""
+    size_error = f"image sizes differ: {sorted(shapes)}" if len(shapes) > 1 else ""
     for a, b in pairings.pairs(list(images)):
         label = pairings.label(spec, a, b)
         item = {"a": a, "b": b, "label": label}
-        if raise_note:
+        if size_error:
             item.update({"rmse": None, "z_fail_fraction": None, "pass": False, "flagged": True,
-                         "error": raise_note})
+                         "error": size_error})
             pair_list.append(item)
             continue
         pair_mask = np.ones(images[a].shape[:2], bool) if mask is None else mask.copy()
