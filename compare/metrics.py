@@ -11,7 +11,8 @@ against an analytic image, the change of the closed form under the normal error 
 tessellated spheres (analytic.AnalyticImage.geometry_tolerance, per pixel); and float32 arithmetic
 and 16-bit PNG quantisation: sigma^2 = var_a + var_b + geometry^2 + (REL_TOL max(|a|,|b|) +
 ABS_TOL)^2. A pixel fails when |z| > Z_CRIT in any channel; an exact pairing passes when at most
-PASS_FRACTION of the compared pixels fail."""
+PASS_FRACTION of the signal pixels fail (those where either image exceeds SIGNAL_LEVEL: a black
+background that both renderers get right must not dilute a wrong highlight)."""
 from __future__ import annotations
 
 import numpy as np
@@ -20,6 +21,7 @@ Z_CRIT = 4.0
 REL_TOL = 0.001
 ABS_TOL = 2e-4
 PASS_FRACTION = 0.01
+SIGNAL_LEVEL = 1e-3
 RELMSE_EPSILON = 1e-2
 
 
@@ -71,7 +73,9 @@ def compare(a, b, var_a=None, var_b=None, mask=None, systematic=None):
     sigma = np.sqrt(var_a + var_b + geometry ** 2 + tolerance ** 2)
     z = (a - b) / sigma
     z_abs = np.max(np.abs(z), axis=-1)
-    fail = (z_abs > Z_CRIT) & mask
+    signal = mask & (np.maximum(np.abs(a), np.abs(b)).max(axis=-1) > SIGNAL_LEVEL)
+    fail = (z_abs > Z_CRIT) & signal
+    n_signal = int(np.count_nonzero(signal))
     return {
         "pixels": int(n),
         "mean": float(np.mean(diff)),
@@ -81,7 +85,8 @@ def compare(a, b, var_a=None, var_b=None, mask=None, systematic=None):
         "psnr": float("inf") if mse == 0 else float(10.0 * np.log10(peak * peak / mse)),
         "rel_mse": float(np.mean(diff ** 2 / (ref ** 2 + RELMSE_EPSILON))),
         "ratio_mean": float(np.sum(a[mask]) / max(np.sum(b[mask]), 1e-12)),
-        "z_fail_fraction": float(np.count_nonzero(fail) / n),
+        "signal_pixels": n_signal,
+        "z_fail_fraction": float(np.count_nonzero(fail) / n_signal) if n_signal else 0.0,
         "z_max": float(np.max(z_abs[mask])),
         "noise_rms": float(np.sqrt(np.mean((var_a + var_b)[mask]))),
         "z_image": z_abs,

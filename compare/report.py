@@ -177,7 +177,8 @@ def write(run_dir, specs, job_list, results, settings):
         by_scene.setdefault(result["scene"], {})[result["engine"]] = result
     summary = {"run": os.path.basename(run_dir), "settings": settings,
                "thresholds": {"z_crit": metrics.Z_CRIT, "rel_tol": metrics.REL_TOL,
-                              "abs_tol": metrics.ABS_TOL, "pass_fraction": metrics.PASS_FRACTION},
+                              "abs_tol": metrics.ABS_TOL, "pass_fraction": metrics.PASS_FRACTION,
+                              "signal_level": metrics.SIGNAL_LEVEL},
                "scenes": [analyse(run_dir, spec, by_scene.get(spec.name, {})) for spec in specs],
                "materials": material_plots(run_dir, specs)}
     summary = _json_safe(summary)
@@ -226,7 +227,8 @@ def render_html(summary):
              f"error² + ({summary['thresholds']['rel_tol']:g}·value + "
              f"{summary['thresholds']['abs_tol']:g})²"
              "; an exact pairing passes when at most "
-             f"{100 * summary['thresholds']['pass_fraction']:g}% of pixels fail. Silhouette "
+             f"{100 * summary['thresholds']['pass_fraction']:g}% of the signal pixels (either "
+             f"image above {summary['thresholds']['signal_level']:g}) fail. Silhouette "
              "pixels are excluded where an analytic image exists, and pixels that POV-Ray's 16-bit PNG "
              "clips at 1. Data: "
              "<a href=\"summary.json\">summary.json</a>.</p>",

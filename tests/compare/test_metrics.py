@@ -89,3 +89,13 @@ def test_scenes_that_claim_analytic_truth_render_it():
         else:
             with pytest.raises(ValueError):
                 analytic.render(spec)
+
+
+def test_black_background_does_not_dilute_a_wrong_highlight():
+    b = np.zeros((64, 64, 3))
+    b[30:34, 30:34] = 2.0            # a small highlight on black
+    a = b.copy()
+    a[30:34, 30:34] = 1.0            # rendered half as bright
+    figures = metrics.compare(a, b)
+    assert figures["signal_pixels"] == 16
+    assert figures["z_fail_fraction"] == 1.0 and not metrics.passes(figures)
