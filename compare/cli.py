@@ -61,7 +61,14 @@ def main(argv=None):
     if args.spp is not None and args.spp < 2:
         raise SystemExit("--spp must be at least 2 (two half-sample renders)")
     overrides = {}
+    known = {m.name for name in args.scenes for m in scenes.get(name).materials()}
     for engine, material, param, value in args.override:
+        if engine not in ENGINES:
+            raise SystemExit(f"--override: engine must be one of {', '.join(ENGINES)}, "
+                             f"got {engine!r}")
+        if material not in known:
+            raise SystemExit(f"--override: no material {material!r} in the chosen scenes; "
+                             f"known: {', '.join(sorted(known))}")
         overrides.setdefault(engine, {}).setdefault(material, {})[param] = value
     run_dir = runner.run(args.scenes, args.engines, spp=args.spp, resolution=args.res,
                          out_root=args.out, scheduler=args.scheduler, workers=args.workers,
