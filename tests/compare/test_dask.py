@@ -1,7 +1,7 @@
 """The harness runs its jobs on a Dask cluster given --scheduler (here a local one on loopback)."""
 import os
 
-from conftest import REPO, run_compare
+from harness_helpers import REPO, run_compare
 
 
 def test_run_through_a_dask_scheduler_on_loopback(tmp_path, monkeypatch):

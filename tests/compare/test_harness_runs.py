@@ -2,7 +2,7 @@
 import importlib.util
 import os
 
-from conftest import REPO, pairing, run_compare, scene
+from harness_helpers import REPO, pairing, run_compare, scene
 
 
 def _bxdf_lab_ready():
