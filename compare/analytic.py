@@ -75,7 +75,8 @@ def _to_local(v, t, b, n):
 # Blender's spheres are UV spheres of 128 segments (bpy_build): facets span DELTA = 2 pi / 128, and
 # the interpolated normal at the facet hit differs from the true sphere normal by about
 # DELTA^2 / 8 (sagitta), plus the sagitta's tangential shift of the hit point, which grows with
-# tan(view angle). The image's sensitivity to a normal error of that size is the geometric tolerance.
+# tan(view angle). The image's sensitivity to a normal error of that size is the geometric
+# tolerance.
 TESSELLATION_DELTA = 2.0 * np.pi / 128.0
 MAX_VIEW_TAN = 20.0
 

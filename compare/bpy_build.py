@@ -1,8 +1,9 @@
 """Builds a SceneSpec into the current bpy scene (runs inside Blender only).
 
-Spheres are smooth-shaded UV spheres of 128 x 64 segments: the silhouette and the interpolated normals
-are then within about 3e-4 of the true sphere, and the few silhouette pixels where mesh and sphere
-disagree are masked out of the diffs (metrics.edge_mask)."""
+Spheres are smooth-shaded UV spheres of 128 x 64 segments: the silhouette and the interpolated
+normals are then within about 3e-4 of the true sphere (analytic.py turns that into a per-pixel
+tolerance), and the few silhouette pixels where mesh and sphere disagree are masked out of the
+diffs (metrics.edge_mask)."""
 from __future__ import annotations
 
 import math

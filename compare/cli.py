@@ -11,7 +11,8 @@ from . import ENGINES, runner, scenes
 
 
 def _override(text):
-    """ENGINE:MATERIAL:PARAM=VALUE, VALUE as JSON (e.g. CYCLES:lambert_orange:reflectance=[.5,.5,.5])."""
+    """ENGINE:MATERIAL:PARAM=VALUE with VALUE as JSON,
+    e.g. CYCLES:lambert_orange:reflectance=[.5,.5,.5]."""
     try:
         engine, material, assignment = text.split(":", 2)
         param, value = assignment.split("=", 1)

@@ -1,8 +1,8 @@
 """Render settings for each engine, so that all three render the same thing (runs inside Blender).
 
-Facts from reference/renderers.md: Cycles with radius-0 lights, no clamping, no denoising, no adaptive
-sampling, pixel-centre sampling through GAUSSIAN width 0.01; POV-Ray with linear 16-bit PNG output
-(+FN16 File_Gamma=1.0), no anti-aliasing, radiosity only where the scene asks for global
+Facts from reference/renderers.md: Cycles with radius-0 lights, no clamping, no denoising, no
+adaptive sampling, pixel-centre sampling through GAUSSIAN width 0.01; POV-Ray with linear 16-bit
+PNG output (+FN16 File_Gamma=1.0), no anti-aliasing, radiosity only where the scene asks for global
 illumination. (POV-Ray's light calibration belongs to the material set-up: see material_setup.)"""
 from __future__ import annotations
 

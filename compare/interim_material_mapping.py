@@ -58,7 +58,8 @@ def _alpha(params):
     """A single GGX/Beckmann alpha for a microfacet model (Blinn exponent e ~ 2/alpha^2 - 2)."""
     dist = params.get("distribution", "ggx")
     if dist in ("ggx", "beckmann"):
-        return math.sqrt(params.get("alpha_x", 0.1) * params.get("alpha_y", params.get("alpha_x", 0.1)))
+        alpha_x = params.get("alpha_x", 0.1)
+        return math.sqrt(alpha_x * params.get("alpha_y", alpha_x))
     if dist == "blinn":
         return math.sqrt(2.0 / (params.get("exponent", 20.0) + 2.0))
     e = math.sqrt(params.get("exponent_x", 20.0) * params.get("exponent_y", 20.0))

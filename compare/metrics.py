@@ -2,9 +2,9 @@
 against the Monte Carlo noise of the two images.
 
 Noise: each stochastic engine renders two half-sample images with different seeds, h1 and h2; the
-full image is their mean, whose per-pixel variance is estimated as (h1 - h2)^2 / 4, averaged over the
-3x3 neighbourhood (9 samples of it, so that one unlucky pixel does not make a tiny variance). A
-deterministic image (ANALYTIC, POV-Ray without anti-aliasing) has variance 0.
+full image is their mean, whose per-pixel variance is estimated as (h1 - h2)^2 / 4, averaged over
+the 3x3 neighbourhood (9 samples of it, so that one unlucky pixel does not make a tiny variance).
+A deterministic image (ANALYTIC, POV-Ray without anti-aliasing) has variance 0.
 
 The test adds systematic tolerances for what is not noise but not a difference of formulas either:
 against an analytic image, the change of the closed form under the normal error of Blender's
@@ -39,7 +39,8 @@ def variance_of_mean(half1, half2):
 
 def edge_mask(object_ids):
     """True where a pixel's 3x3 neighbourhood covers more than one object (or background):
-    silhouettes, where the tessellated mesh and the true sphere may cover a pixel centre differently."""
+    silhouettes, where the tessellated mesh and the true sphere may cover a pixel centre
+    differently."""
     p = np.pad(object_ids, 1, mode="edge")
     h, w = object_ids.shape
     edge = np.zeros((h, w), bool)

@@ -229,9 +229,10 @@ def render_html(summary):
              "; an exact pairing passes when at most "
              f"{100 * summary['thresholds']['pass_fraction']:g}% of the signal pixels (either "
              f"image above {summary['thresholds']['signal_level']:g}) fail. Silhouette "
-             "pixels are excluded where an analytic image exists, and pixels that POV-Ray's 16-bit PNG "
-             "clips at 1. Data: "
+             "pixels are excluded where an analytic image exists, and pixels that POV-Ray's "
+             "16-bit PNG clips at 1. Data: "
              "<a href=\"summary.json\">summary.json</a>.</p>",
+             _run_settings(summary["settings"]),
              _overview(summary)]
     for scene in summary["scenes"]:
         parts.append(_scene_html(scene, summary["materials"]))
@@ -239,9 +240,21 @@ def render_html(summary):
     return "\n".join(parts)
 
 
+def _run_settings(settings):
+    wall = settings.get("wall_seconds")
+    where = settings["scheduler"] or f"local pool of {settings['workers']} workers"
+    resolution = settings["resolution"]
+    resolution = "×".join(map(str, resolution)) if resolution else "per scene"
+    return (f"<p class=\"note\">Wall time {_num(wall, '{:.0f}')} s on {_e(where)}, "
+            f"{_e(settings['threads_per_job'] or 'all')} thread(s) per render; spp "
+            f"{_e(settings['spp'] or 'per scene')}, resolution {_e(resolution)}. "
+            "Speed vs Cycles = Cycles' render seconds / the engine's (above 1: faster).</p>")
+
+
 def _overview(summary):
-    rows = ["<h2>Overview</h2><table><tr><th class=\"l\">scene</th><th class=\"l\">pairing</th>"
-            "<th class=\"l\">label</th><th>RMSE</th><th>z fail</th><th class=\"l\">verdict</th></tr>"]
+    rows = ["<h2>Overview</h2><table><tr><th class=\"l\">scene</th>"
+            "<th class=\"l\">pairing</th><th class=\"l\">label</th><th>RMSE</th><th>z fail</th>"
+            "<th class=\"l\">verdict</th></tr>"]
     for scene in summary["scenes"]:
         for p in scene["pairings"]:
             rows.append(_pair_row_short(scene["name"], p))

@@ -1,7 +1,8 @@
 """Plain-data description of a reference scene.
 
-The same description is built into bpy by `bpy_build` (inside Blender) and ray traced analytically by
-`analytic` (outside Blender), so the camera, lights and spheres cannot drift apart. No bpy here."""
+The same description is built into bpy by `bpy_build` (inside Blender) and ray traced
+analytically by `analytic` (outside Blender), so the camera, lights and spheres cannot drift
+apart. No bpy here."""
 from __future__ import annotations
 
 import math

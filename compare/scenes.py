@@ -2,8 +2,8 @@
 into a bpy scene inside Blender and `analytic.render(spec)` computes its closed-form image.
 
 Light strengths are chosen so that a 0.8-albedo surface comes out near 0.5 (POV-Ray's 16-bit PNG
-clips at 1); the sun's irradiance is pi * srgb_to_linear(0.9) so that POV-Ray's three-digit sRGB light
-colour represents the calibrated value exactly (see engine_setup)."""
+clips at 1); the sun's irradiance is pi * srgb_to_linear(0.9) so that the POV-Ray light colour
+E/pi, which render_povray writes as three-digit sRGB, is represented exactly."""
 from __future__ import annotations
 
 import math
@@ -75,8 +75,8 @@ def sun_sphere():
 def furnace():
     return SceneSpec(
         name="furnace",
-        description="Furnace: Lambertian sphere (albedo 0.8) in a uniform white world, all bounces; "
-                    "truth is 0.8 on the sphere and 1 elsewhere",
+        description="Furnace: Lambertian sphere (albedo 0.8) in a uniform white world, all "
+                    "bounces; truth is 0.8 on the sphere and 1 elsewhere",
         camera=SPHERE_CAMERA,
         objects=(Sphere("sphere", (0.0, 0.0, 0.0), 1.0,
                         Material("lambert_08", "lambertian", {"reflectance": (0.8, 0.8, 0.8)})),),
