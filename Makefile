@@ -24,6 +24,7 @@ test: build
 
 report: build
 	@$(BUILD)/core/bxdf-rho-table
+	@BXDF_PYTHONPATH=$(CURDIR)/$(BUILD)/python $(PYTHON) -m compare run
 
 bench: build
 	@bash tools/run-bench.sh $(BUILD)
