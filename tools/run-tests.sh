@@ -53,6 +53,6 @@ for log in sorted(pathlib.Path(sys.argv[1]).glob("*.log")):
             if what == "passed": passed += int(n)
             elif what == "skipped": skipped += int(n)
             else: failed += int(n)
-print(f"all suites: {passed} passed, {failed} failed" + (f", {skipped} skipped" if skipped else ""))
+print(f"total: {passed} passed, {failed} failed" + (f", {skipped} skipped" if skipped else ""))
 PY
 exit $status
