@@ -1,0 +1,30 @@
+// The compiled half of the Python package `bxdf` (imported as bxdf._bxdf; bxdf/__init__.py
+// re-exports the public names).
+#include <pybind11/pybind11.h>
+
+#include "binding_modules.h"
+#include "bxdf/params.h"
+
+namespace py = pybind11;
+
+PYBIND11_MODULE(_bxdf, m) {
+  m.doc() =
+      "BxDF Lab reflection models (C++ core) for Python: numpy arrays in, numpy float32 arrays "
+      "out.\n\nDirections live in the local shading frame (z = surface normal); wo and wi both "
+      "point away from the surface.";
+
+  // ParameterError derives from std::invalid_argument, which pybind11 already maps to
+  // ValueError; registering it explicitly keeps that true if the base class ever changes.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const bxdf::ParameterError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  bxdf::python::bind_models(m);
+  bxdf::python::bind_fresnel(m);
+  bxdf::python::bind_bake(m);
+  bxdf::python::bind_reference(m);
+}
