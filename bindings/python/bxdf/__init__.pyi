@@ -1,0 +1,85 @@
+# Type stubs for the bxdf package (the compiled bxdf._bxdf plus bxdf/__init__.py).
+from typing import Any, Literal, Sequence, SupportsFloat, TypedDict, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+ArrayLike = npt.ArrayLike
+F32 = npt.NDArray[np.float32]
+I32 = npt.NDArray[np.int32]
+RGBLike = Union[SupportsFloat, Sequence[SupportsFloat], npt.NDArray[Any]]
+ParamValue = Union[float, int, bool, str, RGBLike, Sequence[dict[str, Any]]]
+
+class _When(TypedDict):
+    param: str
+    values: list[str]
+
+class ParamSpecDict(TypedDict, total=False):
+    name: str
+    kind: Literal["float", "rgb", "enum", "bool", "string", "list"]
+    default: Any
+    min: float | None
+    max: float | None
+    min_exclusive: bool
+    max_exclusive: bool
+    unit: str
+    doc: str
+    choices: list[str]  # enum only
+    fields: list[ParamSpecDict]  # list only
+    when: _When  # conditional parameters only
+
+def models() -> dict[str, list[ParamSpecDict]]: ...
+def model_doc(name: str) -> str: ...
+def make(name: str, **params: ParamValue) -> Model: ...
+
+class Model:
+    @property
+    def name(self) -> str: ...
+    @property
+    def params(self) -> dict[str, Any]: ...
+    @property
+    def flags(self) -> set[str]: ...
+    @property
+    def doc(self) -> str: ...
+    def f(self, wo: ArrayLike, wi: ArrayLike) -> F32: ...
+    def pdf(self, wo: ArrayLike, wi: ArrayLike) -> F32: ...
+    def sample_f(self, wo: ArrayLike, u: ArrayLike) -> tuple[F32, F32, F32]: ...
+    def rho(self, wo: ArrayLike, n_samples: int, seed: int = 0) -> F32: ...
+    def rho_hh(self, n_samples: int, seed: int = 0) -> F32: ...
+    def __eq__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
+    def __getstate__(self) -> tuple[str, dict[str, Any]]: ...
+    def __setstate__(self, state: tuple[str, dict[str, Any]]) -> None: ...
+
+def fresnel_dielectric(cos_i: ArrayLike, eta_i: float, eta_t: float) -> F32 | float: ...
+def fresnel_conductor(cos_i: ArrayLike, eta: RGBLike, k: RGBLike) -> F32: ...
+def eta_from_f0(f0: ArrayLike) -> F32 | float: ...
+def k_from_f0(f0: ArrayLike) -> F32 | float: ...
+
+def bake_lobe_polar(
+    model: Model,
+    wo: ArrayLike | None = None,
+    resolution: int = 256,
+    parameterization: Literal["equal_area", "lat_long"] = "equal_area",
+    *,
+    theta_o: float | None = None,
+    phi_o: float = 0.0,
+    hemisphere: Literal["upper", "lower"] = "upper",
+) -> F32: ...
+def bake_slice_half_diff(
+    model: Model, phi_d: float = 90.0, resolution: int = 256, *, phi_h: float = 0.0
+) -> F32: ...
+def bake_albedo_curve(
+    model: Model, n_theta: int = 90, n_samples: int = 4096, *, phi_o: float = 0.0, seed: int = 0
+) -> tuple[F32, F32]: ...
+def lobe_mesh(
+    model: Model,
+    wo: ArrayLike | None = None,
+    resolution: int = 32,
+    *,
+    theta_o: float | None = None,
+    phi_o: float = 0.0,
+    hemisphere: Literal["upper", "lower"] = "upper",
+) -> tuple[F32, I32]: ...
