@@ -44,6 +44,12 @@ struct SoA3 {
   RGBOut rgb() { return {a, b, c}; }
 };
 
+// Two float lanes of one chunk (the u1, u2 of sample_f).
+struct SoA2 {
+  alignas(64) float a[kChunk];
+  alignas(64) float b[kChunk];
+};
+
 // Rows [begin, begin + count) of a (N, 3) argument (broadcasting a single row) into SoA lanes.
 inline void gather3(const VectorRows& v, size_t begin, size_t count, SoA3& dst) {
   if (v.rows == 1) {
@@ -62,16 +68,16 @@ inline void gather3(const VectorRows& v, size_t begin, size_t count, SoA3& dst) 
 }
 
 // Rows of an (N, 2) argument into two lanes.
-inline void gather2(const VectorRows& v, size_t begin, size_t count, float* u1, float* u2) {
+inline void gather2(const VectorRows& v, size_t begin, size_t count, SoA2& dst) {
   if (v.rows == 1) {
-    std::fill_n(u1, count, v.data[0]);
-    std::fill_n(u2, count, v.data[1]);
+    std::fill_n(dst.a, count, v.data[0]);
+    std::fill_n(dst.b, count, v.data[1]);
     return;
   }
   const float* p = v.data + begin * 2;
   for (size_t i = 0; i < count; ++i) {
-    u1[i] = p[2 * i];
-    u2[i] = p[2 * i + 1];
+    dst.a[i] = p[2 * i];
+    dst.b[i] = p[2 * i + 1];
   }
 }
 

@@ -105,10 +105,10 @@ py::tuple model_sample_f(const Model& m, py::handle wo_arg, py::handle u_arg) {
     py::gil_scoped_release nogil;
     for_each_chunk(n, [&](size_t begin, size_t end) {
       SoA3 wo_s, wi_s, f_s;
-      alignas(64) float u1[kChunk], u2[kChunk];
+      SoA2 u_s{};  // zeroed: GCC cannot see that gather2 fills what sample_f_batch reads
       gather3(wo, begin, end - begin, wo_s);
-      gather2(u, begin, end - begin, u1, u2);
-      bxdf.sample_f_batch(end - begin, wo_s.in(), u1, u2, wi_s.out(), f_s.rgb(),
+      gather2(u, begin, end - begin, u_s);
+      bxdf.sample_f_batch(end - begin, wo_s.in(), u_s.a, u_s.b, wi_s.out(), f_s.rgb(),
                           pdf_data + begin);
       // A failed sample (pdf 0) leaves wi undefined in the core; Python gets zeros.
       for (size_t i = 0; i < end - begin; ++i)

@@ -26,5 +26,7 @@ PYBIND11_MODULE(_bxdf, m) {
   bxdf::python::bind_models(m);
   bxdf::python::bind_fresnel(m);
   bxdf::python::bind_bake(m);
+  bxdf::python::bind_presets(m);
+  bxdf::python::bind_material(m);
   bxdf::python::bind_reference(m);
 }

@@ -21,10 +21,14 @@ from ._bxdf import (
     fresnel_conductor,
     fresnel_dielectric,
     k_from_f0,
+    load_material,
     lobe_mesh,
     make,
+    make_preset,
     model_doc,
     models,
+    presets,
+    save_material,
 )
 
 __version__ = "0.1.0"
@@ -38,8 +42,12 @@ __all__ = [
     "fresnel_conductor",
     "fresnel_dielectric",
     "k_from_f0",
+    "load_material",
     "lobe_mesh",
     "make",
+    "make_preset",
     "model_doc",
     "models",
+    "presets",
+    "save_material",
 ]
