@@ -23,6 +23,10 @@ PYBIND11_MODULE(_bxdf, m) {
     }
   });
 
+  // Every docstring starts with its own Python signature; pybind11's would show C++ types.
+  py::options options;
+  options.disable_function_signatures();
+
   bxdf::python::bind_models(m);
   bxdf::python::bind_fresnel(m);
   bxdf::python::bind_bake(m);

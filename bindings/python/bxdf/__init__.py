@@ -33,6 +33,9 @@ from ._bxdf import (
 
 __version__ = "0.1.0"
 
+# Models are shown and pickled as bxdf.Model, the public name, not as the extension's.
+Model.__module__ = __name__
+
 __all__ = [
     "Model",
     "bake_albedo_curve",
