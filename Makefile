@@ -22,6 +22,9 @@ build: configure
 test: build
 	@bash tools/run-tests.sh $(BUILD)
 
+test-python: build
+	@PYTHONPATH=$(abspath $(BUILD))/python $(PYTHON) -m pytest -q tests/python
+
 report: build
 	@$(BUILD)/core/bxdf-rho-table
 	@BXDF_PYTHONPATH=$(CURDIR)/$(BUILD)/python $(PYTHON) -m compare run
