@@ -193,7 +193,12 @@ The registry in the C++ core is the single source of these declarations.)doc");
 
   m.def(
       "model_doc",
-      [](const std::string& name) { return model_info(name).doc; }, py::arg("name"),
+      [](const py::object& name) {
+        if (!py::isinstance<py::str>(name))
+          refuse_argument("name", name, "is not a model name (a str); see bxdf.models()");
+        return model_info(name.cast<std::string>()).doc;
+      },
+      py::arg("name"),
       "model_doc(name) -> str\n\nOne-line description of the model `name` (ValueError if unknown).");
 
   m.def(

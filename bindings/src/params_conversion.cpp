@@ -47,10 +47,16 @@ double finite_real(const std::string& where, const ParamSpec& spec, py::handle o
   return v;
 }
 
-// A list, tuple or 1-D array (but not a string or a mapping).
+// A list, tuple or array with a length (but not a string, a mapping or a 0-d array).
 bool is_sequence(py::handle obj) {
-  return !py::isinstance<py::str>(obj) && !py::isinstance<py::dict>(obj) &&
-         PySequence_Check(obj.ptr()) != 0;
+  if (py::isinstance<py::str>(obj) || py::isinstance<py::dict>(obj) ||
+      PySequence_Check(obj.ptr()) == 0)
+    return false;
+  if (PySequence_Size(obj.ptr()) < 0) {  // e.g. a 0-d numpy array: "len() of unsized object"
+    PyErr_Clear();
+    return false;
+  }
+  return true;
 }
 
 Value value_from_python(const std::string& where, const ParamSpec& spec, py::handle obj) {

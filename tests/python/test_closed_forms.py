@@ -76,6 +76,7 @@ def test_lafortune_presets_evaluate_their_published_fits(rng):
         ([{"cx": 1, "cy": 1, "cz": 1, "exponent": -2}], ["lobes[0]", "exponent", "-2"]),
         ([{"cx": 1, "cy": 1, "cz": float("nan"), "exponent": 2}], ["lobes[0]", "cz", "nan"]),
         ("lobes", ["lobes", "'lobes'"]),
+        (np.array(1.0), ["lobes", "list"]),
     ],
 )
 def test_lafortune_bad_lobes(lobes, words):

@@ -134,6 +134,8 @@ def test_make_refuses_unknown_models():
         bxdf.make(42)
     with pytest.raises(ValueError, match="unknown model"):
         bxdf.model_doc("no_such_model")
+    with pytest.raises(ValueError, match="name"):
+        bxdf.model_doc(None)
 
 
 def test_every_float_parameter_refuses_values_outside_its_range():
