@@ -26,6 +26,8 @@ const ModelInfo& model_info(const std::string& name) {
   return *info;
 }
 
+}  // namespace
+
 Model make_model(const py::object& name_arg, const py::dict& params) {
   if (!py::isinstance<py::str>(name_arg))
     refuse_argument("name", name_arg, "is not a model name (a str); see bxdf.models()");
@@ -33,6 +35,8 @@ Model make_model(const py::object& name_arg, const py::dict& params) {
   const ModelInfo& info = model_info(name);
   return Model{bxdf::make(name, params_from_python(name, info.params, params))};
 }
+
+namespace {
 
 py::set flag_names(uint32_t flags) {
   static const std::pair<uint32_t, const char*> names[] = {
@@ -193,7 +197,7 @@ The registry in the C++ core is the single source of these declarations.)doc");
 
   m.def(
       "model_doc",
-      [](const py::object& name) {
+      [](const py::object& name) -> std::string {
         if (!py::isinstance<py::str>(name))
           refuse_argument("name", name, "is not a model name (a str); see bxdf.models()");
         return model_info(name.cast<std::string>()).doc;

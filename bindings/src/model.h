@@ -2,6 +2,8 @@
 // rebuild it (its registry name and validated parameters live on the core object).
 #pragma once
 
+#include <pybind11/pybind11.h>
+
 #include "bxdf/bxdf.h"
 
 namespace bxdf::python {
@@ -11,5 +13,9 @@ struct Model {
   const BxDF& operator*() const { return *bxdf; }
   const BxDF* operator->() const { return bxdf.get(); }
 };
+
+// bxdf.make(name, **params) (model.cpp): ValueError for a non-str name, an unknown model or a
+// bad parameter.
+Model make_model(const pybind11::object& name, const pybind11::dict& params);
 
 }  // namespace bxdf::python

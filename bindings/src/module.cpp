@@ -32,5 +32,7 @@ PYBIND11_MODULE(_bxdf, m) {
   bxdf::python::bind_bake(m);
   bxdf::python::bind_presets(m);
   bxdf::python::bind_material(m);
+  bxdf::python::bind_measured(m);
+  bxdf::python::bind_fit(m);
   bxdf::python::bind_reference(m);
 }

@@ -22,6 +22,7 @@ from ._bxdf import (
     fresnel_dielectric,
     k_from_f0,
     load_material,
+    load_measured,
     lobe_mesh,
     make,
     make_preset,
@@ -46,6 +47,7 @@ __all__ = [
     "fresnel_dielectric",
     "k_from_f0",
     "load_material",
+    "load_measured",
     "lobe_mesh",
     "make",
     "make_preset",
@@ -54,3 +56,11 @@ __all__ = [
     "presets",
     "save_material",
 ]
+
+# fit() and fit_error() exist when the build found Ceres (core/fit); see bxdf.fit.__doc__.
+try:
+    from ._bxdf import fit, fit_error
+
+    __all__ += ["fit", "fit_error"]
+except ImportError:  # pragma: no cover - a build without Ceres
+    pass

@@ -44,6 +44,31 @@ def presets() -> dict[str, PresetDict]: ...
 def make_preset(name: str) -> Model: ...
 def save_material(model: Model, path: str | os.PathLike[str], name: str = "") -> None: ...
 def load_material(path: str | os.PathLike[str]) -> Model: ...
+def load_measured(path: str | os.PathLike[str], **params: ParamValue) -> Model: ...
+
+class FitReport(TypedDict):
+    model: str
+    error: float
+    baseline_error: float
+    sum_squares: float
+    samples: int
+    iterations: int
+    total_iterations: int
+    starts: int
+    start_errors: list[float]
+    seconds: float
+
+# Present when the build found Ceres (core/fit).
+def fit(
+    measured: Model | str | os.PathLike[str],
+    model: str = "lafortune",
+    lobes: int = 2,
+    *,
+    max_iterations: int = 200,
+    max_starts: int = 0,
+    merl_stride: int = 4,
+) -> tuple[Model, FitReport]: ...
+def fit_error(measured: Model | str | os.PathLike[str], model: Model, merl_stride: int = 4) -> float: ...
 
 class Model:
     @property

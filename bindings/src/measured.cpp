@@ -1,0 +1,31 @@
+// bxdf.load_measured(): a measured BRDF file (MERL .binary, Cornell .brdf) as a model, through
+// the registry's `measured` model like any other.
+#include <pybind11/pybind11.h>
+
+#include "array_args.h"
+#include "binding_modules.h"
+#include "model.h"
+
+namespace bxdf::python {
+
+void bind_measured(py::module_& m) {
+  m.def(
+      "load_measured",
+      [](py::handle path, const py::kwargs& params) {
+        if (!py::isinstance<py::str>(path) && !py::hasattr(path, "__fspath__"))
+          refuse_argument("path", path, "is not a path (a str or os.PathLike)");
+        py::dict all = params;  // `path` cannot be among them: Python binds it to the argument
+        all["path"] = py::module_::import("os").attr("fspath")(path);
+        return make_model(py::str("measured"), all);
+      },
+      py::arg("path"),
+      R"doc(load_measured(path, **params) -> Model
+
+The measured BRDF in the file `path` (str or os.PathLike): a MERL ``.binary`` or a Cornell
+``.brdf`` file, chosen by extension or content. This is ``bxdf.make("measured", path=path,
+**params)``; the other parameters (e.g. ``interpolate``) are listed by
+``bxdf.models()["measured"]``. Files are read once and cached by path, time and size.
+Raises ValueError naming the file and the problem for a missing or malformed file.)doc");
+}
+
+}  // namespace bxdf::python
