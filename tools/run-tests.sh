@@ -25,7 +25,8 @@ run_suite() {
 }
 
 run_suite cpp ctest --test-dir "$BUILD" --output-on-failure -j "$(nproc)"
-if [ -d tests/python ] && [ -d "$BUILD/python/bxdf" ]; then
+if [ -d tests/python ]; then
+  [ -d "$BUILD/python/bxdf" ] || { echo "!! the Python module was not built ($BUILD/python/bxdf missing)"; status=1; }
   run_suite python env PYTHONPATH="$BUILD/python" $PYTHON -m pytest tests/python -q -p no:cacheprovider
 fi
 if [ -f tests/blender/run.py ]; then

@@ -220,6 +220,7 @@ namespace {
 
 void check_number(const std::string& where, const ParamSpec& spec, const Value& shown, double x) {
   if (std::isnan(x)) refuse(where, spec, shown, "is not a number");
+  if (std::isinf(x)) refuse(where, spec, shown, "is not finite");
   const bool below = spec.min_exclusive ? !(x > spec.min) : !(x >= spec.min);
   const bool above = spec.max_exclusive ? !(x < spec.max) : !(x <= spec.max);
   if (below || above) refuse(where, spec, shown, "is out of range");

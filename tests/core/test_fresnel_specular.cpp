@@ -53,17 +53,17 @@ TEST(FresnelSpecular, ChoosesReflectionWithProbabilityF) {
       BxDFSample s = m->sample_f(wo, Point2(static_cast<float>(fresnel) * 0.999f, 0.5f));
       ASSERT_TRUE(s.valid());
       EXPECT_EQ(s.flags, static_cast<uint32_t>(kReflection | kSpecular));
-      EXPECT_NEAR(s.pdf, fresnel, 1e-6);
+      EXPECT_EQ(s.pdf, 1.0f);  // delta lobe: choice probability folded into f
       EXPECT_NEAR(s.wi.x, -wo.x, 1e-6);
       EXPECT_NEAR(s.wi.y, -wo.y, 1e-6);
       EXPECT_NEAR(s.wi.z, wo.z, 1e-6);
       for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(s.f[c], fresnel * kR[c] / std::cos(theta), 2e-6 * s.f[c] + 1e-7);
+        EXPECT_NEAR(s.f[c], kR[c] / std::cos(theta), 2e-6 * s.f[c] + 1e-7);
       // Just above F: refraction by Snell's law, weighted T (1 − F)(η_wo/η_wi)²/|cos θi|.
       s = m->sample_f(wo, Point2(static_cast<float>(fresnel) * 1.001f + 1e-6f, 0.5f));
       ASSERT_TRUE(s.valid());
       EXPECT_EQ(s.flags, static_cast<uint32_t>(kTransmission | kSpecular));
-      EXPECT_NEAR(s.pdf, 1.0 - fresnel, 1e-6);
+      EXPECT_EQ(s.pdf, 1.0f);
       const double theta_t = std::asin(eta_from / eta_to * std::sin(theta));
       const Vec3 expected_wi = direction(theta_t, 1.1 + M_PI, -sign);
       EXPECT_NEAR(s.wi.x, expected_wi.x, 1e-6);
@@ -71,7 +71,7 @@ TEST(FresnelSpecular, ChoosesReflectionWithProbabilityF) {
       EXPECT_NEAR(s.wi.z, expected_wi.z, 1e-6);
       const double scale = (eta_from / eta_to) * (eta_from / eta_to);
       for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(s.f[c], kT[c] * (1.0 - fresnel) * scale / std::cos(theta_t), 2e-6 * s.f[c]);
+        EXPECT_NEAR(s.f[c], kT[c] * scale / std::cos(theta_t), 2e-6 * s.f[c]);
     }
   }
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "bxdf/registry.h"
@@ -45,6 +46,22 @@ TEST(Registry, OutOfRangeAndNaNNameParameterValueAndRange) {
   p.set("reflectance", RGBValue{0.5, std::nan(""), 0.5});
   msg = error_of("lambertian", p);
   EXPECT_NE(msg.find("nan"), std::string::npos) << msg;
+}
+
+TEST(Registry, InfinityIsRefusedEvenWithoutAFiniteBound) {
+  // microfacet_transmission's eta ranges are finite, but validation must not rely on that:
+  // a Float spec with no upper bound still refuses +inf.
+  ParamSpec unbounded = float_param("scale", 1.0, 0.0, std::numeric_limits<double>::infinity(), "",
+                                    "test parameter");
+  ParamSet p;
+  p.set("scale", std::numeric_limits<double>::infinity());
+  try {
+    validate_params("test", {unbounded}, p);
+    FAIL() << "+inf was accepted";
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("'scale' = inf is not finite"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Registry, EveryModelRoundTripsThroughItsParams) {

@@ -214,10 +214,9 @@ def test_sampled_directions_agree_with_f_and_pdf(variant, rng):
     np.testing.assert_allclose(np.linalg.norm(wi[ok], axis=1), 1.0, atol=1e-5)
     assert np.all(f[~ok] == 0) and np.all(wi[~ok] == 0)
     if is_delta(variant):
-        # Delta lobes: f and pdf are 0 for any given pair. The sample's pdf is 1 for a single
-        # delta lobe, or the probability of the lobe chosen (fresnel_specular: F or 1 - F).
+        # Delta lobes: f and pdf are 0 for any given pair; a sample's pdf is 1 (DESIGN.md).
         assert np.all(variant.f(wo[ok], wi[ok]) == 0) and np.all(variant.pdf(wo[ok], wi[ok]) == 0)
-        assert np.all(pdf[ok] <= 1.0)
+        assert np.all(pdf[ok] == 1.0)
     else:
         # The sample's f and pdf are the model's f and pdf for that pair (grazing excluded:
         # there a float32 round trip of wi may cross the horizon).

@@ -1,8 +1,9 @@
 // Smooth glass (pbrt-v3 FresnelSpecular): one sample either reflects, with probability
-// F(cos θo), weight F R / |cos θi|, or refracts, with probability 1 − F, weight
-// T (1 − F) (η_wo/η_wi)² / |cos θi| (radiance transport), so that f |cos θi| / pdf is R for a
-// reflected sample and T (η_wo/η_wi)² for a refracted one. Total internal reflection has F = 1:
-// it always reflects.
+// F(cos θo), or refracts, with probability 1 − F (radiance transport), so that f |cos θi| / pdf
+// is R for a reflected sample and T (η_wo/η_wi)² for a refracted one. Total internal
+// reflection has F = 1: it always reflects.
+// As for every delta lobe in this library (DESIGN.md), the sample reports pdf 1; the choice
+// probability is folded into f: pbrt's F R / |cos θi| with pdf F becomes R / |cos θi| with pdf 1.
 #pragma once
 
 #include "bxdf/bxdf.h"
@@ -28,16 +29,16 @@ class FresnelSpecular final : public BxDFImpl<FresnelSpecular> {
     const float fresnel = fresnel_dielectric(cos_theta(wo), eta_i_, eta_t_);
     if (u.x < fresnel) {
       s.wi = specular_reflect(wo);
-      s.pdf = fresnel;
-      s.f = r_ * (fresnel / abs_cos_theta(s.wi));
+      s.pdf = 1.0f;
+      s.f = r_ / abs_cos_theta(s.wi);
       s.flags = kReflection | kSpecular;
       return s;
     }
     float radiance_scale = 1.0f;
     // F < 1 here, so refraction exists; the check only guards rounding at the critical angle.
     if (!specular_refract(wo, eta_i_, eta_t_, &s.wi, &radiance_scale)) return s;
-    s.pdf = 1.0f - fresnel;
-    s.f = t_ * ((1.0f - fresnel) * radiance_scale / abs_cos_theta(s.wi));
+    s.pdf = 1.0f;
+    s.f = t_ * (radiance_scale / abs_cos_theta(s.wi));
     s.flags = kTransmission | kSpecular;
     return s;
   }
