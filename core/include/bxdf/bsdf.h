@@ -1,0 +1,72 @@
+// The BSDF at one surface point (seed ch. 10, pbrt-v3's BSDF): several BxDFs in a shading
+// frame. It moves directions between world space and the local frame, uses the geometric
+// normal to decide whether a pair of directions is a reflection or a transmission (so that
+// shading normals cannot leak light through a surface), and picks one component to sample.
+//
+// A BSDF is built per hit, on the stack: it holds non-owning pointers to BxDFs that the scene
+// owns (as shared BxDFPtrs) and never allocates.
+#pragma once
+
+#include <cstdint>
+
+#include "bxdf/bxdf.h"
+#include "bxdf/frame.h"
+
+namespace bxdf {
+
+// What BSDF::sample_f returns; directions in world space.
+struct BSDFSample {
+  RGB f;
+  Vec3 wi;
+  float pdf = 0.0f;
+  uint32_t flags = 0;  // the sampled lobe's flags (kSpecular set for a delta lobe)
+  bool valid() const { return pdf > 0.0f; }
+  bool is_delta() const { return (flags & kSpecular) != 0; }
+};
+
+class BSDF {
+ public:
+  static constexpr int kMaxComponents = 8;
+
+  BSDF() = default;
+  // `shading` is the shading frame (its n the shading normal), `geometric_normal` the
+  // triangle's true normal; both world space, unit length.
+  BSDF(const Frame& shading, const Vec3& geometric_normal)
+      : frame_(shading), ng_(geometric_normal) {}
+
+  // Adds a component; throws ParameterError past kMaxComponents or for a null pointer.
+  void add(const BxDF* component);
+
+  int num_components() const { return count_; }
+  // Components whose every flag is in `mask` (BxDF::matches).
+  int num_components(uint32_t mask) const;
+  // True when some component is not a delta lobe, i.e. light sampling can find it.
+  bool has_non_delta() const;
+  // True when some component transmits.
+  bool has_transmission() const;
+  const BxDF* component(int i) const { return components_[i]; }
+
+  const Frame& frame() const { return frame_; }
+  const Vec3& geometric_normal() const { return ng_; }
+  Vec3 to_local(const Vec3& v) const { return frame_.to_local(v); }
+  Vec3 to_world(const Vec3& v) const { return frame_.to_world(v); }
+
+  // Sum of f over matching components that agree with the geometry: reflection components
+  // when wo and wi are on the same side of the geometric normal, transmission ones otherwise.
+  RGB f(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask = kAll) const;
+  // Average pdf over the matching components (the density of sample_f's mixture).
+  float pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask = kAll) const;
+  // Picks a matching component uniformly with u.x, remaps u.x to [0, 1) and samples it. For a
+  // non-delta lobe f and pdf are then those of the whole mixture (summed f, averaged pdf), so
+  // that the returned f/pdf is the estimator's weight; a delta lobe's pdf is divided by the
+  // component count (the chance of picking it).
+  BSDFSample sample_f(const Vec3& wo_world, Point2 u, uint32_t mask = kAll) const;
+
+ private:
+  Frame frame_;
+  Vec3 ng_{0, 0, 1};
+  const BxDF* components_[kMaxComponents] = {};
+  int count_ = 0;
+};
+
+}  // namespace bxdf

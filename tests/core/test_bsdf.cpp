@@ -1,0 +1,236 @@
+// The BSDF: frame changes, reflection vs transmission by the geometric normal, component
+// selection and remapping, summed f / averaged pdf, flag masks and delta lobes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bxdf/bsdf.h"
+#include "bxdf/models/lambertian.h"
+#include "bxdf/registry.h"
+#include "bxdf/rng.h"
+#include "bxdf/sampling.h"
+
+using namespace bxdf;
+
+namespace {
+
+// A perfect mirror with reflectance R: a delta lobe for the selection and pdf tests.
+class TestMirror final : public BxDFImpl<TestMirror> {
+ public:
+  explicit TestMirror(RGB r) : BxDFImpl(kReflection | kSpecular), r_(r) {}
+  RGB eval(const Vec3&, const Vec3&) const { return RGB(0.0f); }
+  BxDFSample sample(const Vec3& wo, Point2) const {
+    BxDFSample s;
+    s.wi = Vec3(-wo.x, -wo.y, wo.z);
+    s.pdf = 1.0f;
+    s.f = r_ / std::fabs(s.wi.z);
+    s.flags = kReflection | kSpecular;
+    return s;
+  }
+  float density(const Vec3&, const Vec3&) const { return 0.0f; }
+
+ private:
+  RGB r_;
+};
+
+// Diffuse transmission T/π into the opposite hemisphere.
+class TestDiffuseTransmission final : public BxDFImpl<TestDiffuseTransmission> {
+ public:
+  explicit TestDiffuseTransmission(RGB t) : BxDFImpl(kTransmission | kDiffuse), t_(t * kInvPi) {}
+  RGB eval(const Vec3& wo, const Vec3& wi) const {
+    return same_hemisphere(wo, wi) ? RGB(0.0f) : t_;
+  }
+  BxDFSample sample(const Vec3& wo, Point2 u) const {
+    BxDFSample s;
+    s.wi = sample_cosine_hemisphere(u);
+    if (wo.z > 0.0f) s.wi.z = -s.wi.z;
+    s.pdf = cosine_hemisphere_pdf(std::fabs(s.wi.z));
+    s.f = t_;
+    s.flags = kTransmission | kDiffuse;
+    return s;
+  }
+  float density(const Vec3& wo, const Vec3& wi) const {
+    return same_hemisphere(wo, wi) ? 0.0f : cosine_hemisphere_pdf(std::fabs(wi.z));
+  }
+
+ private:
+  RGB t_;
+};
+
+// A tilted shading frame, so that world and local directions differ.
+Frame tilted_frame() {
+  return Frame::from_normal(normalize(Vec3(0.3f, -0.2f, 0.9f)));
+}
+
+void expect_rgb_near(const RGB& a, const RGB& b, float tol) {
+  EXPECT_NEAR(a.r, b.r, tol);
+  EXPECT_NEAR(a.g, b.g, tol);
+  EXPECT_NEAR(a.b, b.b, tol);
+}
+
+}  // namespace
+
+TEST(BSDF, WorldAndLocalRoundTrip) {
+  const Frame fr = tilted_frame();
+  const BSDF bsdf(fr, fr.n);
+  const Vec3 v = normalize(Vec3(0.1f, 0.7f, -0.4f));
+  const Vec3 back = bsdf.to_world(bsdf.to_local(v));
+  EXPECT_NEAR(back.x, v.x, 1e-6f);
+  EXPECT_NEAR(back.y, v.y, 1e-6f);
+  EXPECT_NEAR(back.z, v.z, 1e-6f);
+  EXPECT_NEAR(bsdf.to_local(fr.n).z, 1.0f, 1e-6f);
+}
+
+TEST(BSDF, SingleLambertianMatchesTheModelInWorldSpace) {
+  const Lambertian lam(RGB(0.5f, 0.6f, 0.7f));
+  const Frame fr = tilted_frame();
+  BSDF bsdf(fr, fr.n);
+  bsdf.add(&lam);
+  const Vec3 wo = normalize(fr.n + fr.s * 0.5f), wi = normalize(fr.n - fr.t * 0.8f);
+  expect_rgb_near(bsdf.f(wo, wi), RGB(0.5f, 0.6f, 0.7f) * kInvPi, 1e-6f);
+  EXPECT_NEAR(bsdf.pdf(wo, wi), dot(wi, fr.n) * kInvPi, 1e-6f);
+}
+
+TEST(BSDF, GeometricNormalDecidesReflectionVersusTransmission) {
+  // Shading normal tilted away from the geometric normal: wi is above the shading surface but
+  // below the geometric one, so a reflection-only BSDF must give 0 there (no light leak)...
+  const Vec3 ng(0, 0, 1);
+  const Frame shading = Frame::from_normal(normalize(Vec3(0.6f, 0.0f, 0.8f)));
+  const Lambertian lam(RGB(0.8f));
+  BSDF reflect_only(shading, ng);
+  reflect_only.add(&lam);
+  const Vec3 wo = normalize(Vec3(0.0f, 0.3f, 1.0f));
+  const Vec3 wi = normalize(Vec3(1.0f, 0.0f, -0.2f));
+  ASSERT_GT(dot(wi, shading.n), 0.0f);
+  ASSERT_LT(dot(wi, ng), 0.0f);
+  EXPECT_TRUE(reflect_only.f(wo, wi).is_black());
+  // ...and a transmission component is asked instead, even though the local directions are in
+  // the same shading hemisphere (so it answers 0 as well: nothing is counted twice).
+  const TestDiffuseTransmission trans(RGB(0.5f));
+  BSDF both(shading, ng);
+  both.add(&lam);
+  both.add(&trans);
+  EXPECT_TRUE(both.f(wo, wi).is_black());
+  // A true transmission pair gets only the transmission component.
+  const Vec3 below = normalize(Vec3(-0.2f, 0.1f, -1.0f));
+  ASSERT_LT(dot(below, shading.n), 0.0f);
+  expect_rgb_near(both.f(wo, below), RGB(0.5f * kInvPi), 1e-6f);
+}
+
+TEST(BSDF, SumsFAndAveragesPdfOverComponents) {
+  const Lambertian a(RGB(0.2f, 0.3f, 0.4f));
+  const Lambertian b(RGB(0.5f, 0.1f, 0.0f));
+  const Frame fr = tilted_frame();
+  BSDF bsdf(fr, fr.n);
+  bsdf.add(&a);
+  bsdf.add(&b);
+  EXPECT_EQ(bsdf.num_components(), 2);
+  const Vec3 wo = normalize(fr.n + fr.s * 0.3f), wi = normalize(fr.n + fr.t * 0.4f);
+  expect_rgb_near(bsdf.f(wo, wi), RGB(0.7f, 0.4f, 0.4f) * kInvPi, 1e-6f);
+  EXPECT_NEAR(bsdf.pdf(wo, wi), dot(wi, fr.n) * kInvPi, 1e-6f);  // average of two equal pdfs
+}
+
+TEST(BSDF, SampleWeightOfALambertianMixtureIsTheTotalAlbedo) {
+  // Two cosine-sampled Lambertians: f cosθ / pdf = R1 + R2 for every sample, exactly.
+  const Lambertian a(RGB(0.2f, 0.3f, 0.4f));
+  const Lambertian b(RGB(0.5f, 0.1f, 0.0f));
+  const Frame fr = tilted_frame();
+  BSDF bsdf(fr, fr.n);
+  bsdf.add(&a);
+  bsdf.add(&b);
+  const Vec3 wo = normalize(fr.n + fr.s * 0.3f);
+  PCG32 rng(7);
+  for (int i = 0; i < 200; ++i) {
+    const BSDFSample s = bsdf.sample_f(wo, Point2(rng.uniform(), rng.uniform()));
+    ASSERT_TRUE(s.valid());
+    EXPECT_FALSE(s.is_delta());
+    const RGB weight = s.f * (abs_dot(s.wi, fr.n) / s.pdf);
+    expect_rgb_near(weight, RGB(0.7f, 0.4f, 0.4f), 2e-5f);
+    EXPECT_NEAR(s.pdf, bsdf.pdf(wo, s.wi), 1e-5f);
+  }
+}
+
+TEST(BSDF, SelectsComponentWithFirstNumberAndRemapsIt) {
+  const Lambertian lam(RGB(0.5f));
+  const TestMirror mirror(RGB(0.9f));
+  const Frame fr = tilted_frame();
+  BSDF bsdf(fr, fr.n);
+  bsdf.add(&lam);
+  bsdf.add(&mirror);
+  BSDF lam_alone(fr, fr.n);
+  lam_alone.add(&lam);
+  const Vec3 wo = normalize(fr.n + fr.s * 0.3f);
+  // u.x in [0, 0.5): the Lambertian, sampled with u.x stretched to 2 u.x.
+  const BSDFSample first = bsdf.sample_f(wo, Point2(0.2f, 0.7f));
+  const BSDFSample alone = lam_alone.sample_f(wo, Point2(0.4f, 0.7f));
+  ASSERT_TRUE(first.valid() && alone.valid());
+  EXPECT_NEAR(first.wi.x, alone.wi.x, 1e-5f);
+  EXPECT_NEAR(first.wi.y, alone.wi.y, 1e-5f);
+  EXPECT_NEAR(first.wi.z, alone.wi.z, 1e-5f);
+  // The mixture pdf: half the Lambertian's (the mirror's pdf is 0 for any given wi).
+  EXPECT_NEAR(first.pdf, 0.5f * alone.pdf, 1e-5f);
+  // u.x in [0.5, 1): the mirror, with its selection probability in the pdf.
+  const BSDFSample second = bsdf.sample_f(wo, Point2(0.75f, 0.7f));
+  ASSERT_TRUE(second.valid());
+  EXPECT_TRUE(second.is_delta());
+  EXPECT_NEAR(second.pdf, 0.5f, 1e-6f);
+  const Vec3 mirrored = reflect(wo, fr.n);
+  EXPECT_NEAR(dot(second.wi, mirrored), 1.0f, 1e-5f);
+  expect_rgb_near(second.f * (abs_dot(second.wi, fr.n) / second.pdf), RGB(1.8f), 1e-4f);
+  // Delta lobes have no f or pdf for given directions.
+  EXPECT_NEAR(bsdf.f(wo, mirrored).r, 0.5f * kInvPi, 1e-6f);
+}
+
+TEST(BSDF, FlagMaskLimitsTheComponents) {
+  const Lambertian lam(RGB(0.5f));
+  const TestMirror mirror(RGB(0.9f));
+  const Frame fr = tilted_frame();
+  BSDF bsdf(fr, fr.n);
+  bsdf.add(&lam);
+  bsdf.add(&mirror);
+  EXPECT_EQ(bsdf.num_components(kReflection | kDiffuse), 1);
+  EXPECT_EQ(bsdf.num_components(kReflection | kSpecular), 1);
+  EXPECT_EQ(bsdf.num_components(kTransmission | kAllTypes), 0);
+  EXPECT_TRUE(bsdf.has_non_delta());
+  EXPECT_FALSE(bsdf.has_transmission());
+  const Vec3 wo = normalize(fr.n + fr.s * 0.3f);
+  // Only the mirror matches: every u picks it and its pdf is not divided.
+  const BSDFSample s = bsdf.sample_f(wo, Point2(0.1f, 0.5f), kReflection | kSpecular);
+  ASSERT_TRUE(s.valid());
+  EXPECT_TRUE(s.is_delta());
+  EXPECT_NEAR(s.pdf, 1.0f, 1e-6f);
+  // Only the Lambertian: pdf not averaged with anything.
+  const Vec3 wi = normalize(fr.n + fr.t * 0.4f);
+  EXPECT_NEAR(bsdf.pdf(wo, wi, kReflection | kDiffuse), dot(wi, fr.n) * kInvPi, 1e-6f);
+  EXPECT_FALSE(bsdf.sample_f(wo, Point2(0.1f, 0.5f), kTransmission | kAllTypes).valid());
+  EXPECT_TRUE(bsdf.f(wo, wi, kTransmission | kAllTypes).is_black());
+}
+
+TEST(BSDF, DegenerateInputGivesNothing) {
+  const Lambertian lam(RGB(0.5f));
+  const Frame fr = tilted_frame();
+  BSDF bsdf(fr, fr.n);
+  EXPECT_FALSE(bsdf.sample_f(fr.n, Point2(0.5f, 0.5f)).valid());  // no components
+  EXPECT_EQ(bsdf.pdf(fr.n, fr.n), 0.0f);
+  bsdf.add(&lam);
+  EXPECT_FALSE(bsdf.sample_f(fr.s, Point2(0.5f, 0.5f)).valid());  // grazing wo
+  EXPECT_TRUE(bsdf.f(Vec3(0, 0, 0), fr.n).is_black());
+  EXPECT_FALSE(bsdf.sample_f(Vec3(0, 0, 0), Point2(0.5f, 0.5f)).valid());
+}
+
+TEST(BSDF, RefusesNullAndTooManyComponents) {
+  const Lambertian lam(RGB(0.5f));
+  BSDF bsdf;
+  EXPECT_THROW(bsdf.add(nullptr), ParameterError);
+  for (int i = 0; i < BSDF::kMaxComponents; ++i) bsdf.add(&lam);
+  EXPECT_THROW(bsdf.add(&lam), ParameterError);
+}
+
+TEST(BSDF, WorksWithRegistryModels) {
+  const BxDFPtr lam = make("lambertian");
+  const Frame fr = tilted_frame();
+  BSDF bsdf(fr, fr.n);
+  bsdf.add(lam.get());
+  const Vec3 wo = fr.n, wi = normalize(fr.n + fr.s);
+  expect_rgb_near(bsdf.f(wo, wi), RGB(0.8f * kInvPi), 1e-6f);
+}
