@@ -1,0 +1,57 @@
+// Pixel filters by importance sampling (as Cycles does): each camera sample's offset from the
+// pixel centre is drawn with density proportional to the filter, and every sample then counts
+// with weight 1 for its own pixel, so tiles never write to each other's pixels.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bxdf/math.h"
+
+namespace bxdf::render {
+
+enum class FilterType {
+  Box,          // uniform over a square of side `width` pixels
+  Gaussian,     // Cycles' Gaussian: σ = width/4 per axis, truncated at ±1.5·width
+  PixelCenter,  // every sample through the pixel centre
+};
+
+// "box", "gaussian", "pixel_center" (also "center"); throws ParameterError otherwise.
+FilterType parse_filter(const std::string& name);
+const char* to_string(FilterType type);
+
+class PixelFilter {
+ public:
+  // Throws ParameterError for a width outside (0, 16].
+  PixelFilter(FilterType type = FilterType::Box, float width = 1.0f);
+
+  // Offset from the pixel centre, in pixels, for a uniform point u in [0, 1)².
+  Point2 sample(Point2 u) const {
+    switch (type_) {
+      case FilterType::PixelCenter:
+        return {0.0f, 0.0f};
+      case FilterType::Box:
+        return {(u.x - 0.5f) * width_, (u.y - 0.5f) * width_};
+      case FilterType::Gaussian:
+        return {sample_table(u.x), sample_table(u.y)};
+    }
+    return {0.0f, 0.0f};
+  }
+  FilterType type() const { return type_; }
+  float width() const { return width_; }
+
+ private:
+  // Inverse CDF of the 1D filter over [-radius, radius], tabulated and linearly interpolated.
+  float sample_table(float u) const {
+    const float x = u * static_cast<float>(inverse_cdf_.size() - 1);
+    const size_t i = std::min(static_cast<size_t>(x), inverse_cdf_.size() - 2);
+    const float f = x - static_cast<float>(i);
+    return inverse_cdf_[i] * (1.0f - f) + inverse_cdf_[i + 1] * f;
+  }
+
+  FilterType type_;
+  float width_;
+  std::vector<float> inverse_cdf_;
+};
+
+}  // namespace bxdf::render

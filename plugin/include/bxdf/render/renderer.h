@@ -1,0 +1,62 @@
+// Rendering a scene to a film: progressive passes over tiles on all cores (TBB), a progress
+// callback and a cancel flag checked between tiles. This is the entry point a binding calls
+// (with the GIL released: nothing here touches Python unless a callback does).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+
+#include "bxdf/render/camera.h"
+#include "bxdf/render/film.h"
+#include "bxdf/render/filter.h"
+#include "bxdf/render/integrator.h"
+#include "bxdf/render/scene.h"
+
+namespace bxdf::render {
+
+struct RenderSettings {
+  int width = 64, height = 64;
+  int samples_per_pixel = 16;
+  int max_bounces = 8;
+  FilterType filter = FilterType::Box;
+  float filter_width = 1.0f;  // pixels (Blender's filter_width for Gaussian)
+  uint64_t seed = 0;
+  int threads = 0;            // 0 = all cores
+  int tile_size = 16;
+  int samples_per_pass = 0;   // 0 = chosen so that there are about 8 passes
+  bool transparent_background = false;  // alpha = coverage instead of 1
+};
+
+struct RenderProgress {
+  int pass = 0, passes = 0;      // passes finished / total
+  int samples_done = 0;          // per pixel, in finished passes
+  int tiles_done = 0, tiles_total = 0;  // over the whole render
+  double fraction() const { return tiles_total ? double(tiles_done) / tiles_total : 0.0; }
+};
+
+struct RenderCallbacks {
+  // After every tile, serialised (never two at once) but possibly from a worker thread.
+  // Return false to cancel.
+  std::function<bool(const RenderProgress&)> on_tile;
+  // After every pass, on the calling thread; the film then holds a consistent image.
+  std::function<void(const Film&, const RenderProgress&)> on_pass;
+  // Checked before every tile; set it from anywhere to stop.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct RenderStats {
+  double seconds = 0.0;
+  uint64_t camera_samples = 0;
+  uint64_t rays = 0, shadow_rays = 0;
+  uint64_t rejected_samples = 0;  // NaN/Inf/negative radiance dropped
+  int samples_per_pixel = 0;      // completed (less than asked when cancelled)
+  bool cancelled = false;
+};
+
+// Renders `scene` (committed) through `camera`. Throws ParameterError for bad settings.
+// On cancel, returns the film with the passes finished so far and stats.cancelled = true.
+Film render(const Scene& scene, const CameraSettings& camera, const RenderSettings& settings,
+            const RenderCallbacks& callbacks = {}, RenderStats* stats = nullptr);
+
+}  // namespace bxdf::render

@@ -1,0 +1,90 @@
+// The renderable scene: triangle meshes in an Embree BVH, materials, lights and the world.
+// Build it with add_material / add_mesh / add_light / set_world, then commit() once; after that
+// it is immutable and safe to query from many threads.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "bxdf/bsdf.h"
+#include "bxdf/render/lights.h"
+#include "bxdf/render/material.h"
+#include "bxdf/render/mesh.h"
+#include "bxdf/render/ray.h"
+
+namespace bxdf::render {
+
+// What a ray hit, before shading.
+struct Hit {
+  float t = 0.0f;
+  uint32_t mesh = 0, triangle = 0;
+  float b1 = 0.0f, b2 = 0.0f;  // barycentrics of vertices 1 and 2
+};
+
+// The shading point built from a hit.
+struct SurfacePoint {
+  Vec3 p;          // on the triangle (from barycentrics, not from the ray: more accurate)
+  Vec3 ng;         // geometric normal, on the side of ns
+  Vec3 ns;         // interpolated shading normal
+  Vec3 tangent;    // dp/du where UVs exist, else radial about the world Z axis
+  Point2 uv;
+  uint32_t material = 0;
+};
+
+class Scene {
+ public:
+  Scene();
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  // Returns the material's index. Throws ParameterError if it has no component and no emission,
+  // more components than a BSDF holds, or negative/non-finite emission.
+  uint32_t add_material(Material material);
+  // Copies the mesh; returns its index. Throws ParameterError naming the array and the
+  // offending entry (index out of range, NaN position, unknown material...).
+  uint32_t add_mesh(const MeshView& mesh);
+  void add_light(Light light);
+  void set_world(const RGB& radiance);
+  // Builds the BVH and the light list (one area light per mesh with emissive triangles).
+  void commit();
+
+  bool committed() const { return committed_; }
+  size_t num_meshes() const { return meshes_.size(); }
+  size_t num_triangles() const;
+  const std::vector<Material>& materials() const { return materials_; }
+  const std::vector<Light>& lights() const { return lights_; }
+  const RGB& world() const { return world_; }
+
+  // Closest hit in [ray.tmin, ray.tmax].
+  bool intersect(const Ray& ray, Hit* hit) const;
+  // True when something blocks the segment origin + t·dir, t in (0, tmax).
+  bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;
+  SurfacePoint surface_point(const Hit& hit) const;
+  // Emitted radiance of the material at a hit (both sides).
+  const RGB& emission(uint32_t material) const { return materials_[material].emission; }
+  // Index into lights() of the area light made from a mesh, or -1.
+  int area_light_of_mesh(uint32_t mesh) const { return mesh_area_light_[mesh]; }
+
+  // The Embree scene handle (RTCScene), for benchmarks that cast rays directly.
+  void* embree_scene() const;
+
+ private:
+  struct StoredMesh {
+    std::vector<float> positions, normals, uvs;
+    std::vector<uint32_t> indices, material_indices;
+    uint32_t material = 0;
+  };
+  struct EmbreeState;
+
+  std::vector<Material> materials_;
+  std::vector<StoredMesh> meshes_;
+  std::vector<Light> lights_;
+  std::vector<int> mesh_area_light_;
+  RGB world_;
+  bool committed_ = false;
+  std::unique_ptr<EmbreeState> embree_;
+};
+
+}  // namespace bxdf::render

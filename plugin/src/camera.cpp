@@ -1,0 +1,81 @@
+#include "bxdf/render/camera.h"
+
+#include <string>
+
+#include "bxdf/params.h"
+
+namespace bxdf::render {
+
+namespace {
+
+void require_positive(const char* name, float v) {
+  if (!(v > 0.0f) || !std::isfinite(v))
+    throw ParameterError(std::string("camera ") + name + " " + std::to_string(v) +
+                         " must be in (0, inf)");
+}
+
+Vec3 column(const std::array<float, 16>& m, int c) { return {m[c], m[4 + c], m[8 + c]}; }
+
+}  // namespace
+
+std::array<float, 16> look_at(const Vec3& eye, const Vec3& target, const Vec3& up) {
+  Vec3 back = eye - target;
+  if (!normalize_direction(back)) throw ParameterError("look_at: eye and target coincide");
+  Vec3 right = cross(up, back);
+  if (!normalize_direction(right)) throw ParameterError("look_at: up is parallel to the view");
+  const Vec3 true_up = cross(back, right);
+  return {right.x, true_up.x, back.x, eye.x,  //
+          right.y, true_up.y, back.y, eye.y,  //
+          right.z, true_up.z, back.z, eye.z,  //
+          0, 0, 0, 1};
+}
+
+Camera::Camera(const CameraSettings& s, int width, int height) {
+  require_positive("lens_mm", s.lens_mm);
+  require_positive("sensor_width_mm", s.sensor_width_mm);
+  require_positive("sensor_height_mm", s.sensor_height_mm);
+  if (width < 1 || height < 1)
+    throw ParameterError("camera image size " + std::to_string(width) + "x" +
+                         std::to_string(height) + " must be at least 1x1");
+  if (!(s.clip_start >= 0.0f) || !(s.clip_end > s.clip_start) || !std::isfinite(s.clip_end))
+    throw ParameterError("camera clip_start " + std::to_string(s.clip_start) + " / clip_end " +
+                         std::to_string(s.clip_end) + " must satisfy 0 <= start < end < inf");
+  if (!std::isfinite(s.shift_x) || !std::isfinite(s.shift_y))
+    throw ParameterError("camera shift must be finite");
+  for (float v : s.camera_to_world)
+    if (!std::isfinite(v)) throw ParameterError("camera matrix has a non-finite entry");
+
+  width_ = width;
+  height_ = height;
+  inv_width_ = 1.0f / static_cast<float>(width);
+  inv_height_ = 1.0f / static_cast<float>(height);
+
+  // Blender (BKE_camera_params_compute_viewplane): AUTO fits the sensor width to the larger
+  // image side; VERTICAL uses the sensor height. The shift is in units of the fitted side.
+  bool horizontal = s.sensor_fit == SensorFit::Horizontal ||
+                    (s.sensor_fit == SensorFit::Auto && width >= height);
+  const float sensor = s.sensor_fit == SensorFit::Vertical ? s.sensor_height_mm : s.sensor_width_mm;
+  const float fitted = sensor / s.lens_mm;  // size of the fitted side at unit distance
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  if (horizontal) {
+    plane_width_ = fitted;
+    plane_height_ = fitted / aspect;
+  } else {
+    plane_height_ = fitted;
+    plane_width_ = fitted * aspect;
+  }
+  shift_x_ = s.shift_x * fitted;
+  shift_y_ = s.shift_y * fitted;
+  clip_start_ = s.clip_start;
+  clip_end_ = s.clip_end;
+
+  right_ = column(s.camera_to_world, 0);
+  up_ = column(s.camera_to_world, 1);
+  back_ = column(s.camera_to_world, 2);
+  eye_ = column(s.camera_to_world, 3);
+  if (!normalize_direction(right_) || !normalize_direction(up_) || !normalize_direction(back_))
+    throw ParameterError("camera matrix has a zero axis");
+  forward_ = -back_;
+}
+
+}  // namespace bxdf::render

@@ -1,0 +1,122 @@
+#include "bxdf/render/image_io.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <stdexcept>
+
+#include "bxdf/params.h"
+
+namespace bxdf::render {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+float linear_to_srgb(float v) {
+  if (!(v > 0.0f)) return 0.0f;
+  if (v >= 1.0f) return 1.0f;
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+// A name in the target's folder that nobody else is writing, keeping the extension so that
+// OIIO picks the same format.
+fs::path temporary_sibling(const fs::path& target) {
+  std::random_device rd;
+  const auto tag = std::to_string(rd()) + std::to_string(rd());
+  return target.parent_path() / (target.stem().string() + ".tmp-" + tag + target.extension().string());
+}
+
+}  // namespace
+
+void write_image(const std::string& path, const Image& image) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".exr" && ext != ".png")
+    throw ParameterError("output file '" + path + "': extension '" + ext +
+                         "' is not one of {.exr, .png}");
+  if (image.width < 1 || image.height < 1 ||
+      image.rgba.size() != 4 * static_cast<size_t>(image.width) * static_cast<size_t>(image.height))
+    throw ParameterError("write_image: image of " + std::to_string(image.width) + "x" +
+                         std::to_string(image.height) + " has " +
+                         std::to_string(image.rgba.size()) + " floats, expected width*height*4");
+
+  const fs::path target = fs::absolute(fs::path(path));
+  const fs::path temp = temporary_sibling(target);
+  auto out = OIIO::ImageOutput::create(temp.string());
+  if (!out) throw std::runtime_error("cannot write '" + path + "': " + OIIO::geterror());
+
+  bool ok = false;
+  if (ext == ".exr") {
+    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
+    spec.attribute("oiio:ColorSpace", "Linear");
+    spec.attribute("compression", "zip");
+    ok = out->open(temp.string(), spec) &&
+         out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
+  } else {
+    std::vector<float> encoded(image.rgba.size());
+    for (size_t i = 0; i < image.rgba.size(); i += 4) {
+      for (int c = 0; c < 3; ++c) encoded[i + c] = linear_to_srgb(image.rgba[i + c]);
+      encoded[i + 3] = std::clamp(image.rgba[i + 3], 0.0f, 1.0f);
+    }
+    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    // OIIO converts the float values (already sRGB-encoded) to 8 bits with rounding.
+    ok = out->open(temp.string(), spec) &&
+         out->write_image(OIIO::TypeDesc::FLOAT, encoded.data());
+  }
+  const std::string error = ok ? "" : out->geterror();
+  const bool closed = out->close();
+  if (!ok || !closed) {
+    std::error_code ec;
+    fs::remove(temp, ec);
+    throw std::runtime_error("cannot write '" + path + "': " +
+                             (error.empty() ? out->geterror() : error));
+  }
+  std::error_code ec;
+  fs::rename(temp, target, ec);  // atomic within one folder
+  if (ec) {
+    fs::remove(temp, ec);
+    throw std::runtime_error("cannot write '" + path + "': rename failed: " + ec.message());
+  }
+}
+
+Image read_image(const std::string& path) {
+  OIIO::ImageBuf buf(path);
+  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT))
+    throw std::runtime_error("cannot read '" + path + "': " + buf.geterror());
+  const OIIO::ImageSpec& spec = buf.spec();
+  Image img;
+  img.width = spec.width;
+  img.height = spec.height;
+  img.rgba.assign(4 * static_cast<size_t>(img.width) * img.height, 1.0f);
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  buf.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pixels.data());
+  const bool srgb = spec.get_string_attribute("oiio:ColorSpace") == "sRGB" ||
+                    spec.format == OIIO::TypeDesc::UINT8;
+  const int nc = spec.nchannels;
+  const bool grey = nc < 3;  // 1 = grey, 2 = grey + alpha
+  const bool has_alpha = nc == 2 || nc >= 4;
+  for (size_t i = 0; i < static_cast<size_t>(img.width) * img.height; ++i) {
+    const float* px = &pixels[i * nc];
+    for (int c = 0; c < 3; ++c) {
+      float v = px[grey ? 0 : c];
+      if (srgb) v = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+      img.rgba[4 * i + c] = v;
+    }
+    img.rgba[4 * i + 3] = has_alpha ? px[grey ? 1 : 3] : 1.0f;
+  }
+  return img;
+}
+
+}  // namespace bxdf::render

@@ -1,0 +1,152 @@
+#include "bxdf/render/renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <mutex>
+#include <string>
+
+#include "bxdf/params.h"
+
+namespace bxdf::render {
+
+namespace {
+
+uint64_t mix64(uint64_t z) {  // splitmix64 finaliser: decorrelates seed and pass
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+void check_settings(const RenderSettings& s) {
+  const auto bad = [](const std::string& name, long long v, const std::string& range) {
+    throw ParameterError("render setting '" + name + "' is " + std::to_string(v) +
+                         "; valid range " + range);
+  };
+  if (s.width < 1 || s.width > 65536) bad("width", s.width, "[1, 65536]");
+  if (s.height < 1 || s.height > 65536) bad("height", s.height, "[1, 65536]");
+  if (s.samples_per_pixel < 1) bad("samples_per_pixel", s.samples_per_pixel, "[1, inf)");
+  if (s.max_bounces < 0) bad("max_bounces", s.max_bounces, "[0, inf)");
+  if (s.threads < 0) bad("threads", s.threads, "[0, inf) (0 = all cores)");
+  if (s.tile_size < 1 || s.tile_size > 4096) bad("tile_size", s.tile_size, "[1, 4096]");
+  if (s.samples_per_pass < 0) bad("samples_per_pass", s.samples_per_pass, "[0, inf)");
+}
+
+struct Tile {
+  int x0, y0, x1, y1;
+};
+
+}  // namespace
+
+Film render(const Scene& scene, const CameraSettings& camera_settings,
+            const RenderSettings& settings, const RenderCallbacks& callbacks,
+            RenderStats* stats_out) {
+  check_settings(settings);
+  if (!scene.committed()) throw ParameterError("render: the scene is not committed");
+  const auto start = std::chrono::steady_clock::now();
+  const Camera camera(camera_settings, settings.width, settings.height);
+  const PixelFilter filter(settings.filter, settings.filter_width);
+  IntegratorSettings integrator_settings;
+  integrator_settings.max_bounces = settings.max_bounces;
+  const PathTracer tracer(scene, integrator_settings);
+  Film film(settings.width, settings.height);
+
+  std::vector<Tile> tiles;
+  for (int y = 0; y < settings.height; y += settings.tile_size)
+    for (int x = 0; x < settings.width; x += settings.tile_size)
+      tiles.push_back({x, y, std::min(x + settings.tile_size, settings.width),
+                       std::min(y + settings.tile_size, settings.height)});
+  const int spp = settings.samples_per_pixel;
+  const int per_pass =
+      settings.samples_per_pass > 0 ? std::min(settings.samples_per_pass, spp)
+                                    : std::max(1, (spp + 7) / 8);
+  const int passes = (spp + per_pass - 1) / per_pass;
+
+  RenderProgress progress;
+  progress.passes = passes;
+  progress.tiles_total = passes * static_cast<int>(tiles.size());
+  std::mutex progress_mutex;
+  std::atomic<bool> stop{false};
+  std::atomic<uint64_t> rays{0}, shadow_rays{0}, rejected{0}, camera_samples{0};
+  const float background_alpha = settings.transparent_background ? 0.0f : 1.0f;
+
+  const auto cancelled = [&]() {
+    return stop.load(std::memory_order_relaxed) ||
+           (callbacks.cancel && callbacks.cancel->load(std::memory_order_relaxed));
+  };
+
+  const auto render_tile = [&](const Tile& tile, int pass, int first_sample, int count) {
+    PathStats local;
+    uint64_t samples = 0;
+    for (int y = tile.y0; y < tile.y1; ++y) {
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        // One random stream per pixel, restarted per pass from (seed, pass): the image does not
+        // depend on the thread count or the order of tiles.
+        const uint64_t pixel = static_cast<uint64_t>(y) * settings.width + x;
+        PCG32 rng(pixel, mix64(settings.seed * 0x100000001b3ULL + static_cast<uint64_t>(pass)));
+        for (int s = first_sample; s < first_sample + count; ++s) {
+          const Point2 offset = filter.sample(Point2(rng.uniform(), rng.uniform()));
+          const Ray ray = camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
+                                              static_cast<float>(y) + 0.5f + offset.y);
+          const PathResult r = tracer.trace(ray, rng, local);
+          film.add_sample(x, y, r.radiance, std::max(r.alpha, background_alpha));
+          ++samples;
+        }
+      }
+    }
+    rays += local.rays;
+    shadow_rays += local.shadow_rays;
+    rejected += local.rejected;
+    camera_samples += samples;
+  };
+
+  const int threads = settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  int completed_spp = 0;
+  arena.execute([&] {
+    for (int pass = 0; pass < passes && !cancelled(); ++pass) {
+      const int first = pass * per_pass;
+      const int count = std::min(per_pass, spp - first);
+      tbb::parallel_for(
+          tbb::blocked_range<size_t>(0, tiles.size(), 1),
+          [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t t = range.begin(); t != range.end(); ++t) {
+              if (cancelled()) return;
+              render_tile(tiles[t], pass, first, count);
+              if (callbacks.on_tile) {
+                std::lock_guard<std::mutex> lock(progress_mutex);
+                ++progress.tiles_done;
+                if (!callbacks.on_tile(progress)) stop = true;
+              } else {
+                std::lock_guard<std::mutex> lock(progress_mutex);
+                ++progress.tiles_done;
+              }
+            }
+          },
+          tbb::simple_partitioner());
+      if (cancelled()) break;
+      completed_spp = first + count;
+      progress.pass = pass + 1;
+      progress.samples_done = completed_spp;
+      if (callbacks.on_pass) callbacks.on_pass(film, progress);
+    }
+  });
+
+  if (stats_out) {
+    stats_out->seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats_out->camera_samples = camera_samples;
+    stats_out->rays = rays;
+    stats_out->shadow_rays = shadow_rays;
+    stats_out->rejected_samples = rejected;
+    stats_out->samples_per_pixel = completed_spp;
+    stats_out->cancelled = completed_spp < spp;
+  }
+  return film;
+}
+
+}  // namespace bxdf::render
