@@ -5,11 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <random>
 #include <stdexcept>
 
+#include "bxdf/io/atomic_file.h"
 #include "bxdf/params.h"
 
 namespace bxdf::render {
@@ -32,12 +31,6 @@ float linear_to_srgb(float v) {
 
 // A name in the target's folder that nobody else is writing, keeping the extension so that
 // OIIO picks the same format.
-fs::path temporary_sibling(const fs::path& target) {
-  std::random_device rd;
-  const auto tag = std::to_string(rd()) + std::to_string(rd());
-  return target.parent_path() / (target.stem().string() + ".tmp-" + tag + target.extension().string());
-}
-
 }  // namespace
 
 void write_image(const std::string& path, const Image& image) {
@@ -51,44 +44,32 @@ void write_image(const std::string& path, const Image& image) {
                          std::to_string(image.height) + " has " +
                          std::to_string(image.rgba.size()) + " floats, expected width*height*4");
 
-  const fs::path target = fs::absolute(fs::path(path));
-  const fs::path temp = temporary_sibling(target);
-  auto out = OIIO::ImageOutput::create(temp.string());
-  if (!out) throw std::runtime_error("cannot write '" + path + "': " + OIIO::geterror());
-
-  bool ok = false;
-  if (ext == ".exr") {
-    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
-    spec.attribute("oiio:ColorSpace", "Linear");
-    spec.attribute("compression", "zip");
-    ok = out->open(temp.string(), spec) &&
-         out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
-  } else {
-    std::vector<float> encoded(image.rgba.size());
-    for (size_t i = 0; i < image.rgba.size(); i += 4) {
-      for (int c = 0; c < 3; ++c) encoded[i + c] = linear_to_srgb(image.rgba[i + c]);
-      encoded[i + 3] = std::clamp(image.rgba[i + 3], 0.0f, 1.0f);
+  // Written beside the target and renamed over it only when complete (bxdf::io).
+  io::write_file_atomically(path, [&](const std::string& temp) {
+    auto out = OIIO::ImageOutput::create(temp);
+    if (!out) throw std::runtime_error("cannot write '" + path + "': " + OIIO::geterror());
+    bool ok = false;
+    if (ext == ".exr") {
+      OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
+      spec.attribute("oiio:ColorSpace", "Linear");
+      spec.attribute("compression", "zip");
+      ok = out->open(temp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
+    } else {
+      std::vector<float> encoded(image.rgba.size());
+      for (size_t i = 0; i < image.rgba.size(); i += 4) {
+        for (int c = 0; c < 3; ++c) encoded[i + c] = linear_to_srgb(image.rgba[i + c]);
+        encoded[i + 3] = std::clamp(image.rgba[i + 3], 0.0f, 1.0f);
+      }
+      OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
+      spec.attribute("oiio:ColorSpace", "sRGB");
+      // OIIO quantises the (already sRGB-encoded) floats to 8 bits with rounding.
+      ok = out->open(temp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, encoded.data());
     }
-    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    // OIIO converts the float values (already sRGB-encoded) to 8 bits with rounding.
-    ok = out->open(temp.string(), spec) &&
-         out->write_image(OIIO::TypeDesc::FLOAT, encoded.data());
-  }
-  const std::string error = ok ? "" : out->geterror();
-  const bool closed = out->close();
-  if (!ok || !closed) {
-    std::error_code ec;
-    fs::remove(temp, ec);
-    throw std::runtime_error("cannot write '" + path + "': " +
-                             (error.empty() ? out->geterror() : error));
-  }
-  std::error_code ec;
-  fs::rename(temp, target, ec);  // atomic within one folder
-  if (ec) {
-    fs::remove(temp, ec);
-    throw std::runtime_error("cannot write '" + path + "': rename failed: " + ec.message());
-  }
+    const std::string error = ok ? "" : out->geterror();
+    if (!out->close() || !ok)
+      throw std::runtime_error("cannot write '" + path + "': " +
+                               (error.empty() ? out->geterror() : error));
+  });
 }
 
 Image read_image(const std::string& path) {
