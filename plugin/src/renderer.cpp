@@ -36,13 +36,17 @@ void check_settings(const RenderSettings& s) {
   if (s.samples_per_pass < 0) bad("samples_per_pass", s.samples_per_pass, "[0, inf)");
 }
 
+// Automatic passes take about an eighth of the samples, but no more than this many, so that a
+// tile (between two checks of the cancel flag) stays short.
+constexpr int kMaxAutoSamplesPerPass = 16;
+
 struct Tile {
   int x0, y0, x1, y1;
 };
 
 }  // namespace
 
-Film render(const Scene& scene, const CameraSettings& camera_settings,
+Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
             const RenderSettings& settings, const RenderCallbacks& callbacks,
             RenderStats* stats_out) {
   check_settings(settings);
@@ -63,7 +67,7 @@ Film render(const Scene& scene, const CameraSettings& camera_settings,
   const int spp = settings.samples_per_pixel;
   const int per_pass =
       settings.samples_per_pass > 0 ? std::min(settings.samples_per_pass, spp)
-                                    : std::max(1, (spp + 7) / 8);
+                                    : std::clamp((spp + 7) / 8, 1, kMaxAutoSamplesPerPass);
   const int passes = (spp + per_pass - 1) / per_pass;
 
   RenderProgress progress;

@@ -310,9 +310,12 @@ Mesh load_obj(const Reader& r, const std::string& file, const std::string& path,
         const std::string name = mid >= 0 ? obj_materials[size_t(mid)].name : "";
         auto found = materials.find(name);
         if (found == materials.end())
-          r.fail_message(path, "OBJ face uses material '" + name +
-                                   "', which the scene's \"materials\" does not define (or give "
-                                   "the mesh a \"material\")");
+          r.fail_message(path, name.empty()
+                                   ? "an OBJ face has no material (usemtl naming an entry of its "
+                                     ".mtl file); give the mesh a \"material\""
+                                   : "OBJ face uses material '" + name +
+                                         "', which the scene's \"materials\" does not define "
+                                         "(or give the mesh a \"material\")");
         mesh.material_indices.push_back(found->second);
       }
     }

@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
   RenderStats stats;
   Film film;
   try {
-    film = render(*loaded.scene, loaded.camera, settings, callbacks, &stats);
+    film = render_scene(*loaded.scene, loaded.camera, settings, callbacks, &stats);
   } catch (const std::exception& e) {
     std::cerr << "\nbxdf-render: render failed: " << e.what() << "\n";
     return 2;

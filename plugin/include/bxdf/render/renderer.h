@@ -24,7 +24,7 @@ struct RenderSettings {
   uint64_t seed = 0;
   int threads = 0;            // 0 = all cores
   int tile_size = 16;
-  int samples_per_pass = 0;   // 0 = chosen so that there are about 8 passes
+  int samples_per_pass = 0;   // 0 = about spp/8, at most 16 (keeps cancel responsive)
   bool transparent_background = false;  // alpha = coverage instead of 1
 };
 
@@ -56,7 +56,7 @@ struct RenderStats {
 
 // Renders `scene` (committed) through `camera`. Throws ParameterError for bad settings.
 // On cancel, returns the film with the passes finished so far and stats.cancelled = true.
-Film render(const Scene& scene, const CameraSettings& camera, const RenderSettings& settings,
+Film render_scene(const Scene& scene, const CameraSettings& camera, const RenderSettings& settings,
             const RenderCallbacks& callbacks = {}, RenderStats* stats = nullptr);
 
 }  // namespace bxdf::render

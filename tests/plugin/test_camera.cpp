@@ -1,0 +1,103 @@
+// The camera against Blender's rules (BKE_camera_params_compute_viewplane): sensor fit, lens,
+// shift in units of the fitted side, clip planes at depths along the view axis.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bxdf/params.h"
+#include "bxdf/render/camera.h"
+
+using namespace bxdf;
+using namespace bxdf::render;
+
+namespace {
+
+// Camera at the origin looking down -Z (Blender's default orientation), identity matrix.
+// Returns the point where the ray through raster (x, y) meets the plane z = -1.
+Point2 plane_point(const Camera& cam, float x, float y) {
+  const Ray r = cam.generate_ray(x, y);
+  return {r.dir.x / -r.dir.z, r.dir.y / -r.dir.z};
+}
+
+}  // namespace
+
+TEST(Camera, AutoFitUsesSensorWidthForTheLargerSide) {
+  CameraSettings s;
+  s.lens_mm = 50.0f;
+  s.sensor_width_mm = 36.0f;
+  s.sensor_height_mm = 24.0f;
+  // Landscape: the width spans 36/50 at unit distance.
+  const Camera wide(s, 200, 100);
+  EXPECT_NEAR(plane_point(wide, 200, 50).x, 0.36f, 1e-5f);
+  EXPECT_NEAR(plane_point(wide, 100, 0).y, 0.18f, 1e-5f);
+  // Portrait: AUTO puts the sensor *width* along the height.
+  const Camera tall(s, 100, 200);
+  EXPECT_NEAR(plane_point(tall, 50, 0).y, 0.36f, 1e-5f);
+  EXPECT_NEAR(plane_point(tall, 100, 100).x, 0.18f, 1e-5f);
+}
+
+TEST(Camera, HorizontalAndVerticalFit) {
+  CameraSettings s;
+  s.lens_mm = 35.0f;
+  s.sensor_width_mm = 36.0f;
+  s.sensor_height_mm = 24.0f;
+  s.sensor_fit = SensorFit::Horizontal;
+  const Camera h(s, 100, 200);  // portrait but horizontal fit: width spans 36/35
+  EXPECT_NEAR(plane_point(h, 100, 100).x, 0.5f * 36.0f / 35.0f, 1e-5f);
+  EXPECT_NEAR(plane_point(h, 50, 0).y, 36.0f / 35.0f, 1e-5f);
+  s.sensor_fit = SensorFit::Vertical;
+  const Camera v(s, 200, 100);  // landscape, vertical fit: height spans 24/35
+  EXPECT_NEAR(plane_point(v, 100, 0).y, 0.5f * 24.0f / 35.0f, 1e-5f);
+  EXPECT_NEAR(plane_point(v, 200, 50).x, 24.0f / 35.0f, 1e-5f);
+}
+
+TEST(Camera, ShiftIsInUnitsOfTheFittedSide) {
+  CameraSettings s;
+  s.shift_x = 0.25f;
+  s.shift_y = -0.1f;
+  const Camera c(s, 100, 50);  // horizontal (AUTO), fitted side 36/50 = 0.72
+  const Point2 centre = plane_point(c, 50, 25);
+  EXPECT_NEAR(centre.x, 0.25f * 0.72f, 1e-5f);
+  EXPECT_NEAR(centre.y, -0.1f * 0.72f, 1e-5f);
+  s.sensor_fit = SensorFit::Vertical;
+  const Camera v(s, 100, 50);  // fitted side is the height: 24/50
+  EXPECT_NEAR(plane_point(v, 50, 25).x, 0.25f * 0.48f, 1e-5f);
+}
+
+TEST(Camera, ClipPlanesAreDepthsAlongTheViewAxis) {
+  CameraSettings s;
+  s.clip_start = 0.5f;
+  s.clip_end = 10.0f;
+  const Camera c(s, 64, 64);
+  for (float x : {0.0f, 32.0f, 64.0f}) {
+    const Ray r = c.generate_ray(x, 5.0f);
+    EXPECT_NEAR(-r.at(r.tmin).z, 0.5f, 1e-5f);
+    EXPECT_NEAR(-r.at(r.tmax).z, 10.0f, 1e-4f);
+  }
+}
+
+TEST(Camera, MatrixPlacesAndOrientsTheCamera) {
+  CameraSettings s;
+  s.camera_to_world = look_at(Vec3(1, -5, 2), Vec3(1, 0, 2), Vec3(0, 0, 1));
+  const Camera c(s, 32, 32);
+  const Ray centre = c.generate_ray(16, 16);
+  EXPECT_NEAR(centre.dir.y, 1.0f, 1e-6f);
+  EXPECT_NEAR(centre.origin.x, 1.0f, 1e-6f);
+  // Right of the image is +X, top is +Z.
+  EXPECT_GT(c.generate_ray(32, 16).dir.x, 0.0f);
+  EXPECT_GT(c.generate_ray(16, 0).dir.z, 0.0f);
+}
+
+TEST(Camera, RefusesBadSettingsByName) {
+  CameraSettings s;
+  s.lens_mm = 0.0f;
+  try {
+    Camera(s, 8, 8);
+    FAIL() << "lens 0 accepted";
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("lens_mm"), std::string::npos);
+  }
+  s = CameraSettings();
+  s.clip_end = s.clip_start;
+  EXPECT_THROW(Camera(s, 8, 8), ParameterError);
+}
