@@ -8,8 +8,8 @@ namespace {
 
 // A component contributes to a pair of directions only when its kind (reflection or
 // transmission) agrees with what the geometric normal says the pair is.
-bool agrees_with_geometry(const BxDF& b, bool reflect) {
-  return reflect ? (b.flags() & kReflection) != 0 : (b.flags() & kTransmission) != 0;
+bool agrees_with_geometry(uint32_t flags, bool reflect) {
+  return reflect ? (flags & kReflection) != 0 : (flags & kTransmission) != 0;
 }
 
 }  // namespace
@@ -48,7 +48,7 @@ RGB BSDF::f(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask) const {
   RGB sum(0.0f);
   for (int i = 0; i < count_; ++i) {
     const BxDF& b = *components_[i];
-    if (b.matches(mask) && agrees_with_geometry(b, reflect)) sum += b.f(wo, wi);
+    if (b.matches(mask) && agrees_with_geometry(b.flags(), reflect)) sum += b.f(wo, wi);
   }
   return sum;
 }
@@ -99,9 +99,10 @@ BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
   if (picked->is_delta()) {
     // A delta lobe cannot be evaluated by the others; only the selection probability changes.
     out.pdf /= static_cast<float>(matching);
-    // Geometry still decides: a "reflection" that ends up below the geometric surface is dropped.
+    // Geometry still decides: a sampled reflection that ends up below the geometric surface (or
+    // a refraction that stays above it), possible with shading normals, is dropped.
     const bool reflect = dot(out.wi, ng_) * dot(wo_world, ng_) > 0.0f;
-    if (!agrees_with_geometry(*picked, reflect)) return BSDFSample{};
+    if (!agrees_with_geometry(out.flags, reflect)) return BSDFSample{};
     return out;
   }
 

@@ -206,6 +206,24 @@ TEST(BSDF, FlagMaskLimitsTheComponents) {
   EXPECT_TRUE(bsdf.f(wo, wi, kTransmission | kAllTypes).is_black());
 }
 
+TEST(BSDF, DeltaSampleIsDroppedWhenGeometryDisagreesWithItsLobe) {
+  // A mirror under a shading normal tilted 60° from the geometric one: for wo leaning away from
+  // the tilt the mirrored direction goes below the geometric surface. Such a "reflection" would
+  // pass through the surface, so the BSDF drops it; a mirrored direction that stays above is kept.
+  const Vec3 ng(0, 0, 1);
+  const Frame shading = Frame::from_normal(normalize(Vec3(std::sin(1.05f), 0.0f, std::cos(1.05f))));
+  const TestMirror mirror(RGB(1.0f));
+  BSDF bsdf(shading, ng);
+  bsdf.add(&mirror);
+  const Vec3 wo_low = normalize(Vec3(-0.5f, 0.0f, 1.0f));
+  ASSERT_GT(dot(wo_low, shading.n), 0.0f);
+  ASSERT_LT(dot(reflect(wo_low, shading.n), ng), 0.0f);
+  EXPECT_FALSE(bsdf.sample_f(wo_low, Point2(0.5f, 0.5f)).valid());
+  const Vec3 wo_high = normalize(Vec3(1.0f, 0.0f, 0.2f));
+  ASSERT_GT(dot(reflect(wo_high, shading.n), ng), 0.0f);
+  EXPECT_TRUE(bsdf.sample_f(wo_high, Point2(0.5f, 0.5f)).valid());
+}
+
 TEST(BSDF, DegenerateInputGivesNothing) {
   const Lambertian lam(RGB(0.5f));
   const Frame fr = tilted_frame();

@@ -19,6 +19,7 @@ struct RenderSettings {
   int width = 64, height = 64;
   int samples_per_pixel = 16;
   int max_bounces = 8;
+  int russian_roulette_depth = 3;  // first bounce at which paths may be ended at random
   FilterType filter = FilterType::Box;
   float filter_width = 1.0f;  // pixels (Blender's filter_width for Gaussian)
   uint64_t seed = 0;
