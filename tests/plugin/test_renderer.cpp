@@ -1,0 +1,276 @@
+// The render loop: deterministic images whatever the thread count, progress and pass callbacks,
+// cancelling, refusing bad settings, pixel filter distributions, area lights, and no NaN or Inf
+// reaching the film.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include "bxdf/registry.h"
+#include "bxdf/render/renderer.h"
+#include "bxdf/render/shapes.h"
+#include "bxdf/rng.h"
+
+using namespace bxdf;
+using namespace bxdf::render;
+
+namespace {
+
+CameraSettings camera_at(const Vec3& eye, const Vec3& target) {
+  CameraSettings c;
+  c.camera_to_world = look_at(eye, target, Vec3(0, 0, 1));
+  return c;
+}
+
+// A small scene with a diffuse sphere, a floor, a point light and a grey world.
+struct SmallScene {
+  Scene scene;
+  SmallScene() {
+    scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+    const Mesh sphere = make_uv_sphere(Vec3(0, 0, 0), 1.0f, 32, 16, 0);
+    const Mesh floor = make_quad(Vec3(-4, -4, -1), Vec3(8, 0, 0), Vec3(0, 8, 0), 0);
+    scene.add_mesh(sphere.view());
+    scene.add_mesh(floor.view());
+    scene.add_light(point_light(Vec3(2, -2, 3), RGB(20.0f)));
+    scene.set_world(RGB(0.1f));
+    scene.commit();
+  }
+};
+
+RenderSettings small_settings() {
+  RenderSettings s;
+  s.width = 24;
+  s.height = 20;
+  s.samples_per_pixel = 8;
+  s.max_bounces = 3;
+  s.tile_size = 8;
+  return s;
+}
+
+}  // namespace
+
+TEST(Renderer, ImageDoesNotDependOnThreadCount) {
+  SmallScene sc;
+  RenderSettings s = small_settings();
+  s.threads = 1;
+  const std::vector<float> one = render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s).rgba();
+  s.threads = 2;
+  s.samples_per_pass = 3;  // another pass split
+  const std::vector<float> two = render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s).rgba();
+  s.samples_per_pass = 0;
+  const std::vector<float> two_same_passes =
+      render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s).rgba();
+  EXPECT_EQ(one, two_same_passes);  // bit for bit
+  // Another pass split draws other random numbers, but estimates the same image.
+  double diff = 0, sum = 0;
+  for (size_t i = 0; i < one.size(); ++i) {
+    diff += std::fabs(one[i] - two[i]);
+    sum += one[i];
+  }
+  EXPECT_LT(diff / sum, 0.1);
+  EXPECT_GT(sum, 0.0);
+}
+
+TEST(Renderer, ProgressPassesAndCancel) {
+  SmallScene sc;
+  RenderSettings s = small_settings();
+  s.samples_per_pass = 2;  // 4 passes of 3 x 3 tiles
+  int tiles = 0, passes = 0, last_samples = 0;
+  RenderCallbacks cb;
+  cb.on_tile = [&](const RenderProgress& p) {
+    ++tiles;
+    EXPECT_EQ(p.tiles_total, 4 * 9);
+    EXPECT_LE(p.tiles_done, p.tiles_total);
+    return true;
+  };
+  cb.on_pass = [&](const Film& film, const RenderProgress& p) {
+    ++passes;
+    EXPECT_EQ(p.pass, passes);
+    EXPECT_EQ(p.samples_done, last_samples + 2);
+    last_samples = p.samples_done;
+    EXPECT_EQ(film.samples(0, 0), static_cast<uint32_t>(p.samples_done));
+  };
+  RenderStats stats;
+  render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s, cb, &stats);
+  EXPECT_EQ(tiles, 36);
+  EXPECT_EQ(passes, 4);
+  EXPECT_FALSE(stats.cancelled);
+  EXPECT_EQ(stats.samples_per_pixel, 8);
+  EXPECT_EQ(stats.camera_samples, 24u * 20u * 8u);
+  EXPECT_GT(stats.rays, stats.camera_samples);
+
+  // Returning false from the tile callback stops before the next tiles.
+  int seen = 0;
+  RenderCallbacks stop;
+  stop.on_tile = [&](const RenderProgress&) { return ++seen < 5; };
+  RenderStats cancelled;
+  s.threads = 1;
+  render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s, stop, &cancelled);
+  EXPECT_TRUE(cancelled.cancelled);
+  EXPECT_EQ(seen, 5);
+  EXPECT_EQ(cancelled.samples_per_pixel, 0);
+
+  // A cancel flag set beforehand renders nothing.
+  std::atomic<bool> flag{true};
+  RenderCallbacks flagged;
+  flagged.cancel = &flag;
+  RenderStats none;
+  render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s, flagged, &none);
+  EXPECT_TRUE(none.cancelled);
+  EXPECT_EQ(none.camera_samples, 0u);
+}
+
+TEST(Renderer, RefusesBadSettingsByName) {
+  SmallScene sc;
+  const auto message = [&](RenderSettings s) -> std::string {
+    try {
+      render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s);
+    } catch (const ParameterError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  RenderSettings s = small_settings();
+  s.samples_per_pixel = 0;
+  EXPECT_NE(message(s).find("samples_per_pixel"), std::string::npos);
+  s = small_settings();
+  s.max_bounces = -1;
+  EXPECT_NE(message(s).find("max_bounces"), std::string::npos);
+  s = small_settings();
+  s.filter_width = 0.0f;
+  EXPECT_NE(message(s).find("filter width"), std::string::npos);
+  Scene uncommitted;
+  EXPECT_THROW(render_scene(uncommitted, CameraSettings(), small_settings()), ParameterError);
+}
+
+TEST(Renderer, SceneRefusesBadMeshesByArrayAndEntry) {
+  Scene scene;
+  scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const uint32_t bad_indices[3] = {0, 1, 3};
+  MeshView m;
+  m.positions = positions;
+  m.num_vertices = 3;
+  m.indices = bad_indices;
+  m.num_triangles = 1;
+  try {
+    scene.add_mesh(m);
+    FAIL() << "index 3 of 3 vertices accepted";
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("indices[0]"), std::string::npos) << e.what();
+  }
+  const uint32_t indices[3] = {0, 1, 2};
+  m.indices = indices;
+  m.material = 4;
+  EXPECT_THROW(scene.add_mesh(m), ParameterError);
+  m.material = 0;
+  const float nan_positions[9] = {0, 0, 0, 1, std::nanf(""), 0, 0, 1, 0};
+  m.positions = nan_positions;
+  EXPECT_THROW(scene.add_mesh(m), ParameterError);
+}
+
+TEST(PixelFilter, DistributionsMatchTheirDefinitions) {
+  PCG32 rng(5);
+  const int n = 200000;
+  const PixelFilter gauss(FilterType::Gaussian, 1.5f), box(FilterType::Box, 1.0f),
+      centre(FilterType::PixelCenter, 1.0f);
+  double gx2 = 0, gmax = 0, bx2 = 0, bmax = 0;
+  for (int i = 0; i < n; ++i) {
+    const Point2 u(rng.uniform(), rng.uniform());
+    const Point2 g = gauss.sample(u), b = box.sample(u), c = centre.sample(u);
+    gx2 += g.x * g.x;
+    gmax = std::max(gmax, double(std::fabs(g.x)));
+    bx2 += b.x * b.x;
+    bmax = std::max(bmax, double(std::fabs(b.x)));
+    ASSERT_EQ(c.x, 0.0f);
+    ASSERT_EQ(c.y, 0.0f);
+  }
+  // Cycles' Gaussian of width w: σ = w/4, support ±1.5 w.
+  EXPECT_NEAR(std::sqrt(gx2 / n), 1.5 / 4, 0.005);
+  EXPECT_LE(gmax, 1.5 * 1.5);
+  // Box of width 1: uniform on [-1/2, 1/2], variance 1/12.
+  EXPECT_NEAR(bx2 / n, 1.0 / 12, 0.001);
+  EXPECT_LE(bmax, 0.5);
+  EXPECT_THROW(PixelFilter(FilterType::Box, -1.0f), ParameterError);
+  EXPECT_THROW(parse_filter("mitchell"), ParameterError);
+}
+
+// An emissive enclosure of radiance 1 around a grey Lambertian sphere: the sphere reflects
+// ρ·1 from every point (area-light sampling and BSDF hits on the emitter, weighted by MIS),
+// and the enclosure itself is seen at its radiance.
+TEST(AreaLight, EmissiveEnclosureLightsASphereToItsAlbedo) {
+  Scene scene;
+  ParamSet grey;
+  grey.set("reflectance", RGBValue{0.5, 0.5, 0.5});
+  scene.add_material(Material{{make("lambertian", grey)}, RGB(0.0f)});
+  scene.add_material(Material{{}, RGB(1.0f)});
+  const Mesh sphere = make_uv_sphere(Vec3(0, 0, 0), 1.0f, 32, 16, 0);
+  const Mesh enclosure = make_uv_sphere(Vec3(0, 0, 0), 6.0f, 24, 12, 1);
+  scene.add_mesh(sphere.view());
+  scene.add_mesh(enclosure.view());
+  scene.commit();
+  ASSERT_EQ(scene.lights().size(), 1u);
+  EXPECT_EQ(scene.lights()[0].type, LightType::Area);
+  RenderSettings s;
+  s.width = s.height = 24;
+  s.samples_per_pixel = 64;
+  s.max_bounces = 0;
+  RenderStats stats;
+  const Film film = render_scene(scene, camera_at(Vec3(0, -3.5f, 0), Vec3(0, 0, 0)), s, {}, &stats);
+  double sphere_sum = 0;
+  int sphere_pixels = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 24; ++x) {
+      float px[4];
+      film.pixel(x, y, px);
+      const bool centre = std::hypot(x + 0.5 - 12, y + 0.5 - 12) < 4.0;  // well inside the sphere
+      const bool outside = std::hypot(x + 0.5 - 12, y + 0.5 - 12) > 11.0;
+      if (outside) {
+        EXPECT_NEAR(px[0], 1.0f, 1e-5f);
+      }
+      if (!centre) continue;
+      EXPECT_NEAR(px[0], 0.5f, 0.1f);
+      sphere_sum += px[0];
+      ++sphere_pixels;
+    }
+  ASSERT_GT(sphere_pixels, 30);
+  EXPECT_NEAR(sphere_sum / sphere_pixels, 0.5, 0.01);
+}
+
+namespace {
+
+// A model whose every sample has an enormous weight, so that the path throughput overflows.
+class Overflowing final : public BxDFImpl<Overflowing> {
+ public:
+  Overflowing() : BxDFImpl(kReflection | kDiffuse) {}
+  RGB eval(const Vec3&, const Vec3&) const { return RGB(3e38f); }
+  BxDFSample sample(const Vec3& wo, Point2) const {
+    BxDFSample s;
+    s.wi = Vec3(0.3f, 0.1f, wo.z > 0 ? 0.9f : -0.9f);
+    s.pdf = 1e-30f;
+    s.f = RGB(3e38f);
+    s.flags = kReflection | kDiffuse;
+    return s;
+  }
+  float density(const Vec3&, const Vec3&) const { return 1e-30f; }
+};
+
+}  // namespace
+
+TEST(Renderer, OverflowingSamplesAreRejectedAndCounted) {
+  Scene scene;
+  scene.add_material(Material{{std::make_shared<Overflowing>()}, RGB(0.0f)});
+  const Mesh sphere = make_uv_sphere(Vec3(0, 0, 0), 1.0f, 16, 8, 0);
+  scene.add_mesh(sphere.view());
+  scene.set_world(RGB(1.0f));
+  scene.commit();
+  RenderSettings s;
+  s.width = s.height = 8;
+  s.samples_per_pixel = 2;
+  s.max_bounces = 2;
+  RenderStats stats;
+  const Film film = render_scene(scene, camera_at(Vec3(0, -4, 0), Vec3(0, 0, 0)), s, {}, &stats);
+  EXPECT_GT(stats.rejected_samples, 0u);
+  for (float v : film.rgba()) EXPECT_TRUE(std::isfinite(v) && v >= 0.0f);
+}
