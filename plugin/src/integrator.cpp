@@ -25,12 +25,6 @@ Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
   return dot(dir, ng) >= 0.0f ? p + ng * eps : p - ng * eps;
 }
 
-bool has_transmission(const Material& m) {
-  for (const BxDFPtr& c : m.components)
-    if (c->flags() & kTransmission) return true;
-  return false;
-}
-
 }  // namespace
 
 PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
@@ -82,6 +76,7 @@ RGB PathTracer::sample_one_light(const SurfacePoint& sp, const BSDF& bsdf, const
 PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats) const {
   PathResult result;
   RGB L(0.0f), beta(1.0f);
+  float eta_scale = 1.0f;  // product of (η_wi/η_wo)² over refractions: undoes radiance scaling
   Ray ray = camera_ray;
   bool specular_bounce = false;
   float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
@@ -127,7 +122,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
 
     // Surfaces that only reflect are two-sided: face them towards the viewer. Transmissive
     // ones keep their orientation, which tells the model inside from outside.
-    if (dot(wo, sp.ng) < 0.0f && !has_transmission(mat)) {
+    const bool transmissive = scene_.transmissive(sp.material);
+    if (dot(wo, sp.ng) < 0.0f && !transmissive) {
       sp.ng = -sp.ng;
       sp.ns = -sp.ns;
     }
@@ -141,6 +137,11 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     if (!bs.valid() || bs.f.is_black()) break;
     beta *= bs.f * (abs_dot(bs.wi, sp.ns) / bs.pdf);
     if (beta.is_black()) break;
+    if (transmissive && (bs.flags & kTransmission)) {
+      // Entering (wo on the front side) scales radiance by (η_i/η_t)²; leaving undoes it.
+      const float eta = scene_.relative_eta(sp.material);
+      eta_scale *= dot(wo, sp.ng) > 0.0f ? eta * eta : 1.0f / (eta * eta);
+    }
     specular_bounce = bs.is_delta();
     prev_pdf = bs.pdf;
     prev_p = sp.p;
@@ -150,7 +151,9 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     ray.tmax = kInfinity;
 
     if (bounce >= settings_.russian_roulette_depth) {
-      const float m = beta.max_component();
+      // Judged on the throughput without refraction's radiance scaling, as pbrt does, so that a
+      // path inside glass is not ended more often only because its radiance is scaled down.
+      const float m = beta.max_component() * eta_scale;
       if (m < 1.0f) {
         const float q = std::max(0.05f, 1.0f - m);
         if (rng.uniform() < q) break;

@@ -52,6 +52,16 @@ uint32_t Scene::add_material(Material material) {
     if (!c) throw ParameterError("material has a null component");
   if (!finite_nonnegative(material.emission))
     throw ParameterError("material emission must be in [0, inf) per channel");
+  float eta = 0.0f;
+  for (const BxDFPtr& c : material.components) {
+    if (!(c->flags() & kTransmission)) continue;
+    const ParamSet& p = c->params();
+    eta = 1.0f;
+    if (p.has("eta_i") && p.has("eta_t") && p.number("eta_i") > 0.0)
+      eta = static_cast<float>(p.number("eta_t") / p.number("eta_i"));
+    break;
+  }
+  material_eta_.push_back(eta);
   materials_.push_back(std::move(material));
   return static_cast<uint32_t>(materials_.size() - 1);
 }

@@ -64,6 +64,11 @@ class Scene {
   SurfacePoint surface_point(const Hit& hit) const;
   // Emitted radiance of the material at a hit (both sides).
   const RGB& emission(uint32_t material) const { return materials_[material].emission; }
+  // η_t/η_i of the material's first transmissive component (1 when none), read from the
+  // registry parameters eta_i, eta_t; the integrator uses it to keep Russian roulette blind
+  // to the (η_i/η_t)² radiance scaling of refraction (pbrt's etaScale).
+  float relative_eta(uint32_t material) const { return material_eta_[material]; }
+  bool transmissive(uint32_t material) const { return material_eta_[material] != 0.0f; }
   // Index into lights() of the area light made from a mesh, or -1.
   int area_light_of_mesh(uint32_t mesh) const { return mesh_area_light_[mesh]; }
 
@@ -79,6 +84,7 @@ class Scene {
   struct EmbreeState;
 
   std::vector<Material> materials_;
+  std::vector<float> material_eta_;  // 0 = no transmission; else η_t/η_i (1 if unknown)
   std::vector<StoredMesh> meshes_;
   std::vector<Light> lights_;
   std::vector<int> mesh_area_light_;
