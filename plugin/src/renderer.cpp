@@ -124,14 +124,9 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
             for (size_t t = range.begin(); t != range.end(); ++t) {
               if (cancelled()) return;
               render_tile(tiles[t], pass, first, count);
-              if (callbacks.on_tile) {
-                std::lock_guard<std::mutex> lock(progress_mutex);
-                ++progress.tiles_done;
-                if (!callbacks.on_tile(progress)) stop = true;
-              } else {
-                std::lock_guard<std::mutex> lock(progress_mutex);
-                ++progress.tiles_done;
-              }
+              std::lock_guard<std::mutex> lock(progress_mutex);  // one callback at a time
+              ++progress.tiles_done;
+              if (callbacks.on_tile && !callbacks.on_tile(progress)) stop = true;
             }
           },
           tbb::simple_partitioner());
