@@ -1,0 +1,195 @@
+#include "model_grid.h"
+
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "bxdf/registry.h"
+
+namespace bxdf::test {
+
+namespace {
+
+ParamSet params(std::initializer_list<std::pair<const char*, Value>> items) {
+  ParamSet p;
+  for (const auto& [name, value] : items) p.set(name, value);
+  return p;
+}
+
+GridEntry entry(std::string label, ParamSet p, double recorded_max_albedo = 0.0) {
+  return {std::move(label), std::move(p), recorded_max_albedo};
+}
+
+// One Lafortune lobe with the same coefficients in every channel.
+ParamSet lobe(double cx, double cy, double cz, double exponent) {
+  return params({{"cx", cx}, {"cy", cy}, {"cz", cz}, {"exponent", exponent}});
+}
+
+// The seed's grey conductor constants (η, k) for gold.
+const RGBValue kGoldEta{0.370, 0.370, 0.370}, kGoldK{2.820, 2.820, 2.820};
+// pbrt's RGB fit for copper, so that the conductor path sees different channels.
+const RGBValue kCopperEta{0.200, 0.924, 1.102}, kCopperK{3.912, 2.452, 2.142};
+
+// Lobe widths are chosen so that a 50 × 101 (φ, cosθ) histogram of 10⁶ samples still resolves
+// them (GGX α ≥ 0.1, Blinn exponent ≤ 200), while the narrowest ones are sharp enough to put
+// most of their mass into a few dozen cells.
+std::map<std::string, std::vector<GridEntry>> build_grid() {
+  std::map<std::string, std::vector<GridEntry>> g;
+
+  g["lambertian"] = {
+      entry("grey", params({{"reflectance", 0.8}})),
+      entry("tinted", params({{"reflectance", RGBValue{0.9, 0.5, 0.1}}})),
+      entry("white", params({{"reflectance", 1.0}})),
+  };
+  g["lambertian_transmission"] = {
+      entry("grey", params({{"transmittance", 0.8}})),
+      entry("tinted_white", params({{"transmittance", RGBValue{1.0, 0.6, 0.2}}})),
+  };
+  g["oren_nayar"] = {
+      entry("sigma0_is_lambert", params({{"reflectance", 0.8}, {"sigma", 0.0}})),
+      entry("sigma20", params({{"reflectance", RGBValue{0.9, 0.6, 0.3}}, {"sigma", 20.0}})),
+      entry("sigma60_white", params({{"reflectance", 1.0}, {"sigma", 60.0}})),
+      entry("sigma90_white", params({{"reflectance", 1.0}, {"sigma", 90.0}})),
+  };
+  g["specular_reflection"] = {
+      entry("none", params({{"reflectance", 1.0}, {"fresnel", "none"}})),
+      entry("dielectric_glass",
+            params({{"fresnel", "dielectric"}, {"eta_i", 1.0}, {"eta_t", 1.5}})),
+      entry("dielectric_from_inside",
+            params({{"fresnel", "dielectric"}, {"eta_i", 1.5}, {"eta_t", 1.0}})),
+      entry("conductor_gold",
+            params({{"reflectance", 1.0}, {"fresnel", "conductor"}, {"eta", kGoldEta},
+                    {"k", kGoldK}})),
+  };
+  g["specular_transmission"] = {
+      entry("air_to_glass", params({{"transmittance", 1.0}, {"eta_i", 1.0}, {"eta_t", 1.5}})),
+      entry("glass_to_air_tinted",
+            params({{"transmittance", RGBValue{0.9, 0.7, 0.5}}, {"eta_i", 1.5}, {"eta_t", 1.0}})),
+  };
+  g["fresnel_specular"] = {
+      entry("glass", params({{"eta_i", 1.0}, {"eta_t", 1.5}})),
+      entry("diamond_tinted", params({{"reflectance", RGBValue{1.0, 0.9, 0.8}},
+                                      {"transmittance", RGBValue{0.7, 0.8, 1.0}},
+                                      {"eta_i", 1.0}, {"eta_t", 2.42}})),
+      entry("water_from_inside", params({{"eta_i", 1.333}, {"eta_t", 1.0}})),
+  };
+  g["microfacet"] = {
+      entry("blinn_e20_vgroove", params({{"distribution", "blinn"}, {"exponent", 20.0},
+                                         {"shadowing", "v_groove"}, {"fresnel", "none"},
+                                         {"reflectance", 1.0}})),
+      entry("blinn_e200_vgroove_dielectric",
+            params({{"distribution", "blinn"}, {"exponent", 200.0}, {"shadowing", "v_groove"},
+                    {"fresnel", "dielectric"}, {"eta_i", 1.0}, {"eta_t", 1.5}})),
+      entry("ashikhmin_shirley_aniso_conductor",
+            params({{"distribution", "ashikhmin_shirley"}, {"exponent_x", 10.0},
+                    {"exponent_y", 100.0}, {"shadowing", "v_groove"}, {"fresnel", "conductor"},
+                    {"eta", kCopperEta}, {"k", kCopperK}})),
+      entry("ashikhmin_shirley_iso_smith",
+            params({{"distribution", "ashikhmin_shirley"}, {"exponent_x", 50.0},
+                    {"exponent_y", 50.0}, {"shadowing", "smith"}, {"fresnel", "none"},
+                    {"reflectance", 1.0}})),
+      entry("beckmann_rough_smith", params({{"distribution", "beckmann"}, {"alpha_x", 0.5},
+                                            {"alpha_y", 0.5}, {"shadowing", "smith"},
+                                            {"fresnel", "none"}, {"reflectance", 1.0}})),
+      entry("beckmann_aniso_dielectric",
+            params({{"distribution", "beckmann"}, {"alpha_x", 0.1}, {"alpha_y", 0.4},
+                    {"shadowing", "smith"}, {"fresnel", "dielectric"}, {"eta_i", 1.0},
+                    {"eta_t", 1.5}})),
+      entry("ggx_smooth_conductor",
+            params({{"distribution", "ggx"}, {"alpha_x", 0.1}, {"alpha_y", 0.1},
+                    {"shadowing", "smith"}, {"fresnel", "conductor"}, {"eta", kGoldEta},
+                    {"k", kGoldK}})),
+      entry("ggx_aniso_none", params({{"distribution", "ggx"}, {"alpha_x", 0.35},
+                                      {"alpha_y", 0.12}, {"shadowing", "smith"},
+                                      {"fresnel", "none"}, {"reflectance", 1.0}})),
+      entry("ggx_very_rough_vgroove",
+            params({{"distribution", "ggx"}, {"alpha_x", 1.0}, {"alpha_y", 1.0},
+                    {"shadowing", "v_groove"}, {"fresnel", "none"}, {"reflectance", 1.0}})),
+  };
+  g["microfacet_transmission"] = {
+      entry("beckmann_glass", params({{"distribution", "beckmann"}, {"alpha_x", 0.3},
+                                      {"alpha_y", 0.3}, {"eta_i", 1.0}, {"eta_t", 1.5}})),
+      entry("ggx_glass", params({{"distribution", "ggx"}, {"alpha_x", 0.2}, {"alpha_y", 0.2},
+                                 {"eta_i", 1.0}, {"eta_t", 1.5}})),
+      entry("ggx_aniso_water",
+            params({{"distribution", "ggx"}, {"alpha_x", 0.15}, {"alpha_y", 0.45},
+                    {"eta_i", 1.0}, {"eta_t", 1.333}, {"transmittance", RGBValue{1.0, 0.8, 0.6}}})),
+      entry("ggx_rough_from_inside", params({{"distribution", "ggx"}, {"alpha_x", 0.6},
+                                             {"alpha_y", 0.6}, {"eta_i", 1.5}, {"eta_t", 1.0}})),
+  };
+  g["lafortune"] = {
+      entry("diffuse_only", params({{"diffuse", 0.7}, {"lobes", std::vector<ParamSet>{}}})),
+      entry("phong_lobe", params({{"diffuse", 0.2},
+                                  {"lobes", std::vector<ParamSet>{lobe(-1, -1, 1, 20)}}})),
+      entry("retroreflective_aniso",
+            params({{"diffuse", 0.1},
+                    {"lobes", std::vector<ParamSet>{lobe(0.8, 0.5, 0.7, 8)}}})),
+      // The grey felt fit of Lafortune et al. 1997 (three lobes, one back-scattering).
+      entry("felt_fit", params({{"diffuse", 0.025865},
+                                {"lobes", std::vector<ParamSet>{lobe(-0.304075, -0.304075,
+                                                                     -0.065992, 3.047892),
+                                                                lobe(-0.749561, -0.749561,
+                                                                     -1.167929, 6.931827),
+                                                                lobe(1.004921, 1.004921,
+                                                                     -0.205529, 94.117332)}}})),
+  };
+  return g;
+}
+
+const std::map<std::string, std::vector<GridEntry>>& grid() {
+  static const auto g = build_grid();
+  return g;
+}
+
+IncidentDirection direction(float theta_deg, float phi_deg) {
+  const float t = radians(theta_deg), p = radians(phi_deg);
+  const Vec3 w(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
+  return {"theta" + std::to_string(static_cast<int>(theta_deg)) + "_phi" +
+              std::to_string(static_cast<int>(phi_deg)),
+          normalize(w)};
+}
+
+}  // namespace
+
+const std::vector<GridEntry>* curated_grid(const std::string& model) {
+  const auto it = grid().find(model);
+  return it == grid().end() ? nullptr : &it->second;
+}
+
+std::vector<GridEntry> grid_for(const std::string& model) {
+  if (const auto* g = curated_grid(model)) return *g;
+  return {entry("defaults", ParamSet())};
+}
+
+std::vector<std::string> uncurated_models() {
+  std::vector<std::string> out;
+  for (const ModelInfo& m : models())
+    if (!curated_grid(m.name)) out.push_back(m.name);
+  return out;
+}
+
+const std::vector<IncidentDirection>& incident_directions() {
+  static const std::vector<IncidentDirection> dirs = {
+      {"normal", Vec3(0.0f, 0.0f, 1.0f)},
+      direction(30, 10),  direction(50, 130), direction(70, 250), direction(85, 45),
+      direction(89, 300),  // near-grazing
+      direction(120, 60), direction(165, 200),  // below the horizon
+  };
+  return dirs;
+}
+
+std::vector<std::string> registered_model_names() {
+  std::vector<std::string> out;
+  for (const ModelInfo& m : models()) out.push_back(m.name);
+  return out;
+}
+
+BxDFPtr make_entry(const std::string& model, const GridEntry& entry) {
+  return make(model, entry.params);
+}
+
+std::string describe(const std::string& model, const GridEntry& entry) {
+  return model + "[" + entry.label + "]";
+}
+
+}  // namespace bxdf::test

@@ -1,0 +1,49 @@
+// The curated test grid: for every registered model a few parameter sets that together cover
+// its behaviour (smooth and rough, isotropic and anisotropic, every enum choice, every Fresnel
+// kind), and the incident directions every model-wide test visits. The χ², reciprocity,
+// energy and fuzz tests all iterate over this one grid.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bxdf/bxdf.h"
+#include "bxdf/math.h"
+#include "bxdf/params.h"
+
+namespace bxdf::test {
+
+struct GridEntry {
+  std::string label;  // short, unique within the model: "ggx_aniso_conductor"
+  ParamSet params;    // given to make(); unnamed parameters take their defaults
+  // 0 for entries that conserve energy (ρhd ≤ 1.01 everywhere). Entries known to gain energy
+  // (the seed's unnormalised models) record here the largest ρhd over incident_directions()
+  // that we measured, so that the energy test notices when the gain changes.
+  double recorded_max_albedo = 0.0;
+  bool energy_conserving() const { return recorded_max_albedo == 0.0; }
+};
+
+// The curated entries for `model`, or nullptr when the model has none.
+const std::vector<GridEntry>* curated_grid(const std::string& model);
+// The curated entries, or a single "defaults" entry for a model without any.
+std::vector<GridEntry> grid_for(const std::string& model);
+// Registered models that have no curated entries (a test asserts this is empty).
+std::vector<std::string> uncurated_models();
+
+// Unit directions in the local frame: several θo from normal to near-grazing, several φo, and
+// two below the horizon (a BSDF is hit from both sides).
+struct IncidentDirection {
+  std::string label;  // "theta85_phi45"
+  Vec3 wo;
+};
+const std::vector<IncidentDirection>& incident_directions();
+
+// Names of all registered models, for parameterised tests.
+std::vector<std::string> registered_model_names();
+// make(model, entry.params).
+BxDFPtr make_entry(const std::string& model, const GridEntry& entry);
+
+// "model[label]" for messages.
+std::string describe(const std::string& model, const GridEntry& entry);
+
+}  // namespace bxdf::test
