@@ -188,6 +188,14 @@ BxDFPtr make_entry(const std::string& model, const GridEntry& entry) {
   return make(model, entry.params);
 }
 
+bool refractive_indices(const BxDF& model, float* eta_outside, float* eta_inside) {
+  const ParamSet& p = model.params();
+  if (!p.has("eta_i") || !p.has("eta_t")) return false;
+  *eta_outside = static_cast<float>(p.number("eta_i"));
+  *eta_inside = static_cast<float>(p.number("eta_t"));
+  return true;
+}
+
 std::string describe(const std::string& model, const GridEntry& entry) {
   return model + "[" + entry.label + "]";
 }

@@ -43,6 +43,10 @@ std::vector<std::string> registered_model_names();
 // make(model, entry.params).
 BxDFPtr make_entry(const std::string& model, const GridEntry& entry);
 
+// For models that refract (parameters eta_i, the index on the +z side, and eta_t, the index
+// on the −z side): the two indices. False for models without them.
+bool refractive_indices(const BxDF& model, float* eta_outside, float* eta_inside);
+
 // "model[label]" for messages.
 std::string describe(const std::string& model, const GridEntry& entry);
 

@@ -60,47 +60,52 @@ class Lattice {
     }
   }
 
-  // Integrates a function given per lattice row as values over columns into per-cell
-  // integrals (cos_bins × phi_bins, row-major in cos). `row_values(k, lower, out)` writes the
-  // cols() values of row k.
-  std::vector<double> integrate(
-      const std::function<void(int, bool, std::vector<double>&)>& row_values) const {
+  // Integrates `channels` functions, given per lattice row, into per-cell integrals
+  // (cos_bins × phi_bins, row-major in cos) for each channel. `row_values(k, lower, out)`
+  // writes row k's values channel after channel: out[ch * cols() + m].
+  std::vector<std::vector<double>> integrate(
+      int channels, const std::function<void(int, bool, std::vector<double>&)>& row_values) const {
     const int res = c_.integration_res;
-    // Per row: the φ-integral over each φ bin.
-    std::vector<double> by_phi((rows_ + 1) * static_cast<size_t>(c_.phi_bins));
+    const size_t nphi = static_cast<size_t>(c_.phi_bins);
+    // Per row slot and channel: the φ-integral over each φ bin. The lower-side copy of the
+    // horizon row lives at slot rows_.
+    std::vector<double> by_phi(static_cast<size_t>(rows_ + 1) * channels * nphi);
     std::vector<double> values;
+    auto at = [&](int slot, int ch, int i) -> double& {
+      return by_phi[(static_cast<size_t>(slot) * channels + ch) * nphi + i];
+    };
     auto phi_integrals = [&](int slot, int k, bool lower) {
       row_values(k, lower, values);
-      for (int i = 0; i < c_.phi_bins; ++i) {
-        double s = 0.0;
-        for (int m = 0; m <= res; ++m) s += simpson_weight(m, res) * values[i * res + m];
-        by_phi[static_cast<size_t>(slot) * c_.phi_bins + i] = s * h_phi() / 3.0;
+      for (int ch = 0; ch < channels; ++ch) {
+        const double* v = values.data() + static_cast<size_t>(ch) * cols_;
+        for (int i = 0; i < c_.phi_bins; ++i) {
+          double s = 0.0;
+          for (int m = 0; m <= res; ++m) s += simpson_weight(m, res) * v[i * res + m];
+          at(slot, ch, i) = s * h_phi() / 3.0;
+        }
       }
     };
     for (int k = 0; k < rows_; ++k) phi_integrals(k, k, false);
-    phi_integrals(rows_, horizon_row_, true);  // the lower-side horizon row lives at slot rows_
+    phi_integrals(rows_, horizon_row_, true);
 
     auto slot_of = [&](int k, bool lower) { return (lower && k == horizon_row_) ? rows_ : k; };
-    // Simpson over rows [k0, k0 + n] of φ-integrals; `lower` selects the horizon copy.
-    auto cos_integral = [&](int i, int k0, int n, bool lower) {
+    // Simpson over rows [k0, k0 + n]; `lower` selects the horizon row's lower copy.
+    auto cos_integral = [&](int ch, int i, int k0, int n, bool lower) {
       double s = 0.0;
-      for (int a = 0; a <= n; ++a)
-        s += simpson_weight(a, n) * by_phi[static_cast<size_t>(slot_of(k0 + a, lower)) *
-                                               c_.phi_bins + i];
+      for (int a = 0; a <= n; ++a) s += simpson_weight(a, n) * at(slot_of(k0 + a, lower), ch, i);
       return s * h_cos() / 3.0;
     };
-    std::vector<double> cells(static_cast<size_t>(c_.cos_bins) * c_.phi_bins);
+    std::vector<std::vector<double>> cells(
+        channels, std::vector<double>(static_cast<size_t>(c_.cos_bins) * nphi));
     const int mid = c_.cos_bins / 2;
-    for (int j = 0; j < c_.cos_bins; ++j) {
-      for (int i = 0; i < c_.phi_bins; ++i) {
-        double v;
-        if (j == mid) {
-          v = cos_integral(i, horizon_row_ - res / 2, res / 2, true) +
-              cos_integral(i, horizon_row_, res / 2, false);
-        } else {
-          v = cos_integral(i, j * res, res, false);
+    for (int ch = 0; ch < channels; ++ch) {
+      for (int j = 0; j < c_.cos_bins; ++j) {
+        for (int i = 0; i < c_.phi_bins; ++i) {
+          const double v = j == mid ? cos_integral(ch, i, horizon_row_ - res / 2, res / 2, true) +
+                                          cos_integral(ch, i, horizon_row_, res / 2, false)
+                                    : cos_integral(ch, i, j * res, res, false);
+          cells[ch][static_cast<size_t>(j) * nphi + i] = v;
         }
-        cells[static_cast<size_t>(j) * c_.phi_bins + i] = v;
       }
     }
     return cells;
@@ -169,12 +174,13 @@ Chi2Result run_chi2(const BxDF& model, const Vec3& wo, const Chi2Config& c) {
   const Lattice lattice(c);
   std::vector<float> x, y, z, wox(lattice.cols(), wo.x), woy(lattice.cols(), wo.y),
       woz(lattice.cols(), wo.z), p(lattice.cols());
-  std::vector<double> expected = lattice.integrate([&](int k, bool lower, std::vector<double>& v) {
-    lattice.row_directions(k, lower, x, y, z);
-    model.pdf_batch(static_cast<size_t>(lattice.cols()), {wox.data(), woy.data(), woz.data()},
-                    {x.data(), y.data(), z.data()}, p.data());
-    v.assign(p.begin(), p.end());
-  });
+  std::vector<double> expected =
+      lattice.integrate(1, [&](int k, bool lower, std::vector<double>& v) {
+        lattice.row_directions(k, lower, x, y, z);
+        model.pdf_batch(static_cast<size_t>(lattice.cols()), {wox.data(), woy.data(), woz.data()},
+                        {x.data(), y.data(), z.data()}, p.data());
+        v.assign(p.begin(), p.end());
+      })[0];
   r.pdf_integral = std::accumulate(expected.begin(), expected.end(), 0.0);
   if (r.pdf_integral > 1.1) {
     r.hard_failure = "pdf integrates to " + std::to_string(r.pdf_integral) + " > 1.1";
@@ -234,25 +240,32 @@ Chi2Result run_chi2(const BxDF& model, const Vec3& wo, const Chi2Config& c) {
   return r;
 }
 
-RGB quadrature_albedo(const BxDF& model, const Vec3& wo, const Chi2Config& c) {
+Albedo quadrature_albedo(const BxDF& model, const Vec3& wo, const Chi2Config& c) {
   const Lattice lattice(c);
-  std::vector<float> x, y, z, wox(lattice.cols(), wo.x), woy(lattice.cols(), wo.y),
-      woz(lattice.cols(), wo.z), fr(lattice.cols()), fg(lattice.cols()), fb(lattice.cols());
-  RGB out;
-  // One channel at a time keeps the lattice code scalar-valued; f is cheap.
+  const size_t n = static_cast<size_t>(lattice.cols());
+  std::vector<float> x, y, z, wox(n, wo.x), woy(n, wo.y), woz(n, wo.z), fr(n), fg(n), fb(n);
+  // Six channels: reflected r, g, b (wi on wo's side), then transmitted r, g, b.
+  const std::vector<std::vector<double>> cells =
+      lattice.integrate(6, [&](int k, bool lower, std::vector<double>& v) {
+        lattice.row_directions(k, lower, x, y, z);
+        model.f_batch(n, {wox.data(), woy.data(), woz.data()}, {x.data(), y.data(), z.data()},
+                      {fr.data(), fg.data(), fb.data()});
+        v.assign(6 * n, 0.0);
+        for (size_t m = 0; m < n; ++m) {
+          const size_t side = (z[m] * wo.z > 0.0f) ? 0 : 3;
+          const double cosine = std::fabs(z[m]);
+          v[(side + 0) * n + m] = fr[m] * cosine;
+          v[(side + 1) * n + m] = fg[m] * cosine;
+          v[(side + 2) * n + m] = fb[m] * cosine;
+        }
+      });
+  Albedo a;
   for (int ch = 0; ch < 3; ++ch) {
-    const std::vector<double> cells =
-        lattice.integrate([&](int k, bool lower, std::vector<double>& v) {
-          lattice.row_directions(k, lower, x, y, z);
-          model.f_batch(static_cast<size_t>(lattice.cols()), {wox.data(), woy.data(), woz.data()},
-                        {x.data(), y.data(), z.data()}, {fr.data(), fg.data(), fb.data()});
-          const std::vector<float>& f = ch == 0 ? fr : (ch == 1 ? fg : fb);
-          v.resize(f.size());
-          for (size_t m = 0; m < f.size(); ++m) v[m] = f[m] * std::fabs(z[m]);
-        });
-    out[ch] = static_cast<float>(std::accumulate(cells.begin(), cells.end(), 0.0));
+    a.reflected[ch] = static_cast<float>(std::accumulate(cells[ch].begin(), cells[ch].end(), 0.0));
+    a.transmitted[ch] =
+        static_cast<float>(std::accumulate(cells[ch + 3].begin(), cells[ch + 3].end(), 0.0));
   }
-  return out;
+  return a;
 }
 
 }  // namespace bxdf::test

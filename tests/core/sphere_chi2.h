@@ -35,9 +35,14 @@ struct Chi2Result {
 
 Chi2Result run_chi2(const BxDF& model, const Vec3& wo, const Chi2Config& config = {});
 
-// ∫ f(wo, wi) |cos θi| dωi per channel over the whole sphere, by the same Simpson
-// quadrature: an estimate of ρhd that does not depend on the model's sampling. Good for
-// lobes the (φ, cosθ) grid resolves (the curated grid's), not for near-delta ones.
-RGB quadrature_albedo(const BxDF& model, const Vec3& wo, const Chi2Config& config = {});
+// ∫ f(wo, wi) |cos θi| dωi per channel, by the same Simpson quadrature: an estimate of ρhd
+// that does not depend on the model's sampling, split into the part reflected to wo's side
+// and the part transmitted to the other. Good for lobes the (φ, cosθ) grid resolves (the
+// curated grid's), not for near-delta ones.
+struct Albedo {
+  RGB reflected, transmitted;
+  RGB total() const { return reflected + transmitted; }
+};
+Albedo quadrature_albedo(const BxDF& model, const Vec3& wo, const Chi2Config& config = {});
 
 }  // namespace bxdf::test

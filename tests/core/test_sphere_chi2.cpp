@@ -84,7 +84,8 @@ TEST(SphereChi2, PdfTooSmallByAFewPercentFails) {
 TEST(SphereChi2, QuadratureAlbedoOfLambertIsR) {
   const Lambertian lambert(RGB(0.2f, 0.5f, 1.0f));
   for (const Vec3& wo : {Vec3(0, 0, 1), Vec3(0.6f, 0.0f, -0.8f)}) {
-    const RGB a = quadrature_albedo(lambert, wo);
+    const RGB a = quadrature_albedo(lambert, wo).reflected;
+    EXPECT_TRUE(quadrature_albedo(lambert, wo).transmitted.is_black());
     EXPECT_NEAR(a.r, 0.2f, 2e-4f);
     EXPECT_NEAR(a.g, 0.5f, 5e-4f);
     EXPECT_NEAR(a.b, 1.0f, 1e-3f);
