@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Runs the Google Benchmark programs (single thread) and prints each result in M items/s next
+# to the pbrt-v3 reference figure where there is one (goal: 2× the reference).
+# Usage: tools/run-bench.sh [BUILD] [extra benchmark flags, e.g. --benchmark_filter=ggx]
+set -euo pipefail
+BUILD=${1:-build}
+shift || true
+cd "$(dirname "$0")/.."
+BIN="$BUILD/bench/bxdf_bench_models"
+if [ ! -x "$BIN" ]; then
+  echo "run-bench: $BIN not built (configure with -DBXDF_BUILD_BENCH=ON)" >&2
+  exit 1
+fi
+OUT="$BUILD/bench/models.json"
+"$BIN" --benchmark_out="$OUT" --benchmark_out_format=json --benchmark_min_time=0.3 "$@"
+
+/usr/bin/python3 - "$OUT" <<'PY'
+import json, sys
+# pbrt-v3 -O3 on one core, M items/s (the task's reference figures).
+REFERENCE = {
+    "f/oren_nayar/defaults": 33.0,
+    "f/microfacet/ggx": 20.0,
+    "sample_f/microfacet/ggx": 5.8,
+    "pdf/microfacet/ggx": 22.0,
+    "f/microfacet/beckmann+dielectric": 9.9,
+    "fresnel/conductor": 30.0,
+}
+rows = json.load(open(sys.argv[1]))["benchmarks"]
+
+print()
+print(f"{'benchmark':58s} {'M items/s':>10s} {'pbrt-v3':>8s} {'goal 2x':>8s} {'vs goal':>8s}")
+for r in rows:
+    rate = r.get("items_per_second", 0.0) / 1e6
+    ref = REFERENCE.get(r["name"])
+    extra = f"{ref:8.1f} {2 * ref:8.1f} {rate / (2 * ref):7.2f}x" if ref else ""
+    print(f"{r['name']:58s} {rate:10.1f} {extra}")
+PY
