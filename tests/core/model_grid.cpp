@@ -184,6 +184,25 @@ std::vector<std::string> registered_model_names() {
   return out;
 }
 
+std::vector<std::string> models_with_entries(bool delta) {
+  std::vector<std::string> out;
+  for (const ModelInfo& m : models()) {
+    for (const GridEntry& e : grid_for(m.name)) {
+      bool is_delta;
+      try {
+        is_delta = make(m.name, e.params)->is_delta();
+      } catch (const std::exception&) {
+        continue;  // ModelGrid.EveryCuratedEntryBuildsAndLabelsAreUnique reports it
+      }
+      if (is_delta == delta) {
+        out.push_back(m.name);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
 BxDFPtr make_entry(const std::string& model, const GridEntry& entry) {
   return make(model, entry.params);
 }

@@ -40,6 +40,9 @@ const std::vector<IncidentDirection>& incident_directions();
 
 // Names of all registered models, for parameterised tests.
 std::vector<std::string> registered_model_names();
+// Registered models with at least one grid entry that is a delta model (delta = true) or
+// that is not (delta = false); entries that do not build are left out.
+std::vector<std::string> models_with_entries(bool delta);
 // make(model, entry.params).
 BxDFPtr make_entry(const std::string& model, const GridEntry& entry);
 

@@ -1,7 +1,8 @@
 // Bad parameters, derived from every model's own declarations: for each bounded Float or RGB
 // parameter (and each bounded field of a list parameter) a value just outside each finite
 // bound, NaN and a string; for each Enum an unknown choice and a number. Each is refused with
-// a ParameterError whose message names the parameter, the value and the valid range.
+// a ParameterError whose message names the parameter, the value and the valid range; so is
+// an unknown parameter name.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -110,7 +111,15 @@ TEST_P(ModelBadParams, BoundedNumbersEnumsAndListFieldsAreRefused) {
       expect_refused(model, p, s.name, "1", s.range_string(), "not a list");
     }
   }
-  if (checked == 0) GTEST_SKIP() << model << " has no bounded parameters";
+  // Every model refuses an unknown name, listing the ones it knows.
+  ParamSet unknown;
+  unknown.set("no_such_parameter", 1.0);
+  bool refused;
+  const std::string msg = refusal(model, unknown, &refused);
+  EXPECT_TRUE(refused) << msg;
+  EXPECT_NE(msg.find("no_such_parameter"), std::string::npos) << msg;
+  for (const ParamSpec& s : info->params) EXPECT_NE(msg.find(s.name), std::string::npos) << msg;
+  RecordProperty("bad_values_checked", checked);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllModels, ModelBadParams, ::testing::ValuesIn(registered_model_names()),
