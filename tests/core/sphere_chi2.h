@@ -1,7 +1,7 @@
 // χ² goodness of fit of a model's sample_f against its own pdf, the way pbrt-v3
 // (src/tests/bsdfs.cpp) and Mitsuba (chi2.py) test BSDFs: sampled directions are binned on an
 // area-preserving (φ, cosθ) grid over the whole sphere, the expected count of each cell is
-// N × the integral of pdf over the cell (composite Simpson), low-expectation cells are pooled,
+// N × the integral of pdf over the cell (adaptive Simpson), low-expectation cells are pooled,
 // and the statistic's p-value comes from the regularised incomplete gamma function.
 #pragma once
 
@@ -15,7 +15,9 @@ namespace bxdf::test {
 struct Chi2Config {
   int phi_bins = 50;
   int cos_bins = 101;         // odd: the horizon falls inside a cell, never on an edge
-  int integration_res = 8;    // Simpson sub-intervals per cell and axis; a multiple of 4
+  int integration_res = 4;    // initial Simpson sub-intervals per cell and axis (even)
+  double integration_abs_tol = 1e-7;  // per cell, in probability (× samples = counts)
+  double integration_rel_tol = 1e-4;
   int64_t samples = 1000000;
   uint64_t seed = 1;
   double min_expected = 5.0;  // cells are pooled until each group expects this many

@@ -136,41 +136,51 @@ TEST_P(DeltaSampling, DeltaLobes) {
   for (const GridEntry& e : grid_for(model)) {
     const BxDFPtr m = make_entry(model, e);
     if (!m->is_delta()) continue;
-    const ParamSet& p = m->params();
-    const bool refracts = p.has("eta_i") && p.has("eta_t");
+    float eta_outside = 1.0f, eta_inside = 1.0f;
+    const bool refracts = refractive_indices(*m, &eta_outside, &eta_inside);
     PCG32 rng(run_seed(model, e.label, 0));
     for (const IncidentDirection& dir : incident_directions()) {
       const Vec3 wo = dir.wo;
-      const std::string what = describe(model, e) + " wo " + dir.label;
+      int failures = 0;
+      std::string first;
+      auto check = [&](bool ok, const char* rule, const Vec3& wi, float value) {
+        if (ok || failures++ > 0) return;
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "%s (wi %s, value %.7g)", rule, fmt_vec(wi).c_str(), value);
+        first = buf;
+      };
       for (int s = 0; s < 200; ++s) {
-        // f and pdf vanish for every pair, the mirror and refracted directions included.
-        const Vec3 wi = s == 0 ? Vec3(-wo.x, -wo.y, wo.z) : Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f);
-        EXPECT_TRUE(m->f(wo, wi).is_black()) << what;
-        EXPECT_EQ(m->pdf(wo, wi), 0.0f) << what;
+        // f and pdf vanish for every pair, the mirror direction included.
+        const Vec3 wi = s == 0 ? Vec3(-wo.x, -wo.y, wo.z)
+                               : Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f);
+        check(m->f(wo, wi).is_black(), "f is 0", wi, m->f(wo, wi).max_component());
+        check(m->pdf(wo, wi) == 0.0f, "pdf is 0", wi, m->pdf(wo, wi));
 
         const BxDFSample smp = m->sample_f(wo, Point2(rng.uniform(), rng.uniform()));
         if (!smp.valid()) continue;
         ++checked;
-        EXPECT_EQ(smp.pdf, 1.0f) << what << ": a delta sample's pdf is 1";
-        EXPECT_TRUE(smp.flags & kSpecular) << what;
+        check(smp.pdf == 1.0f, "a delta sample's pdf is 1", smp.wi, smp.pdf);
+        check(smp.flags & kSpecular, "the sampled lobe is specular", smp.wi, 0.0f);
         if (smp.flags & kReflection) {
-          EXPECT_NEAR(smp.wi.x, -wo.x, 1e-5f) << what;
-          EXPECT_NEAR(smp.wi.y, -wo.y, 1e-5f) << what;
-          EXPECT_NEAR(smp.wi.z, wo.z, 1e-5f) << what;
-        } else {
-          ASSERT_TRUE(smp.flags & kTransmission) << what;
-          EXPECT_LT(smp.wi.z * wo.z, 0.0f) << what << ": transmission stays on wo's side";
-          // Opposite azimuth and, for refraction, Snell's law η_o sin θo = η_i sin θi.
-          EXPECT_NEAR(smp.wi.x * wo.y - smp.wi.y * wo.x, 0.0f, 1e-5f) << what;
-          EXPECT_LE(smp.wi.x * wo.x + smp.wi.y * wo.y, 1e-6f) << what;
-          if (refracts) {
-            const float eta_out = static_cast<float>(p.number("eta_i"));
-            const float eta_in = static_cast<float>(p.number("eta_t"));
-            const float eta_wo = wo.z > 0 ? eta_out : eta_in, eta_wi = wo.z > 0 ? eta_in : eta_out;
-            EXPECT_NEAR(eta_wo * sin_theta(wo), eta_wi * sin_theta(smp.wi), 1e-4f) << what;
-          }
+          const float err = length(smp.wi - Vec3(-wo.x, -wo.y, wo.z));
+          check(err < 1e-5f, "reflection goes to the mirror direction", smp.wi, err);
+          continue;
+        }
+        check(smp.flags & kTransmission, "the lobe is reflection or transmission", smp.wi, 0.0f);
+        check(smp.wi.z * wo.z < 0.0f, "transmission crosses the surface", smp.wi, smp.wi.z);
+        // Opposite azimuth, and Snell's law η_wo sin θo = η_wi sin θi.
+        const float cross_z = smp.wi.x * wo.y - smp.wi.y * wo.x;
+        check(std::fabs(cross_z) < 1e-5f, "transmission keeps the plane of incidence", smp.wi, cross_z);
+        check(smp.wi.x * wo.x + smp.wi.y * wo.y <= 1e-6f, "transmission reverses the azimuth", smp.wi, 0.0f);
+        if (refracts) {
+          const float eta_wo = wo.z > 0 ? eta_outside : eta_inside;
+          const float eta_wi = wo.z > 0 ? eta_inside : eta_outside;
+          const float snell = eta_wo * sin_theta(wo) - eta_wi * sin_theta(smp.wi);
+          check(std::fabs(snell) < 1e-4f, "Snell's law", smp.wi, snell);
         }
       }
+      EXPECT_EQ(failures, 0) << describe(model, e) << " wo " << dir.label << ": " << failures
+                             << " violations; first: " << first;
     }
   }
   EXPECT_GT(checked, 0) << model << ": its delta entries produced no samples";
