@@ -161,6 +161,13 @@ std::map<std::string, std::vector<GridEntry>> build_grid() {
       entry("ggx_singular_mirror", params({{"distribution", "ggx"}, {"roughness", 0.0},
                                            {"color", 1.0}})),
   };
+  // Cornell measurements shipped in data/measured (the model's default is acryl_blue).
+  g["measured"] = {
+      entry("acryl_blue_interpolated",
+            params({{"path", BXDF_TEST_DATA_DIR "/measured/acryl_blue.brdf"}, {"interpolate", true}})),
+      entry("garnet_red_nearest",
+            params({{"path", BXDF_TEST_DATA_DIR "/measured/garnet_red.brdf"}, {"interpolate", false}})),
+  };
   return g;
 }
 

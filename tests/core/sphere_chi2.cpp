@@ -65,8 +65,6 @@ class CellIntegrator {
   }
 
  private:
-  static constexpr int kMaxDepth = 18;
-
   template <class G>
   Values adaptive(const G& g, double a, double b, const Values& fa, const Values& fm,
                   const Values& fb, const Values& whole, double tol, int depth) const {
@@ -76,7 +74,7 @@ class CellIntegrator {
     const Values right = (fm + frm * 4.0 + fb) * ((b - m) / 6.0);
     const Values both = left + right;
     const double err = max_abs(both - whole);
-    if (depth >= kMaxDepth || err <= 15.0 * std::max(tol, c_.integration_rel_tol * max_abs(both)))
+    if (depth >= c_.integration_max_depth || err <= 15.0 * std::max(tol, c_.integration_rel_tol * max_abs(both)))
       return both + (both - whole) * (1.0 / 15.0);
     return adaptive(g, a, m, fa, flm, fm, left, 0.5 * tol, depth + 1) +
            adaptive(g, m, b, fm, frm, fb, right, 0.5 * tol, depth + 1);
