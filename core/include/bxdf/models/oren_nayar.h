@@ -20,24 +20,14 @@ class OrenNayar final : public BxDFImpl<OrenNayar> {
 
   RGB eval(const Vec3& wo, const Vec3& wi) const {
     if (!same_hemisphere(wo, wi)) return RGB(0.0f);
-    const float sin_theta_i = sin_theta(wi), sin_theta_o = sin_theta(wo);
-    // cos(φi − φo) is undefined at the pole; the term vanishes there anyway (sin α tan β → 0).
-    float max_cos = 0.0f;
-    if (sin_theta_i > 1e-4f && sin_theta_o > 1e-4f) {
-      const float d_cos = cos_phi(wi) * cos_phi(wo) + sin_phi(wi) * sin_phi(wo);
-      max_cos = std::max(0.0f, d_cos);
-    }
-    // β is the angle closer to the normal: the one with the larger |cos θ|. Both |cos θ| are
-    // positive here (same_hemisphere), so tan β stays finite even at grazing.
-    float sin_alpha, tan_beta;
-    if (abs_cos_theta(wi) > abs_cos_theta(wo)) {
-      sin_alpha = sin_theta_o;
-      tan_beta = sin_theta_i / abs_cos_theta(wi);
-    } else {
-      sin_alpha = sin_theta_i;
-      tan_beta = sin_theta_o / abs_cos_theta(wo);
-    }
-    return r_over_pi_ * (a_ + b_ * max_cos * sin_alpha * tan_beta);
+    // With unit directions, cos(φi − φo) sin θi sin θo = wi.x wo.x + wi.y wo.y and
+    // sin α sin β = sin θi sin θo, so max(0, cos(φi − φo)) sin α tan β reduces to
+    // max(0, wi.x wo.x + wi.y wo.y) / cos β, where β, the angle closer to the normal, has the
+    // larger |cos θ|. No square roots or divisions by sin θ: exact, finite at the pole (where
+    // the term vanishes) and at grazing (cos β > 0 whenever both are in one hemisphere).
+    const float cos_phi_sin_sin = std::max(0.0f, wi.x * wo.x + wi.y * wo.y);
+    const float cos_beta = std::max(std::fabs(wi.z), std::fabs(wo.z));
+    return r_over_pi_ * (a_ + b_ * cos_phi_sin_sin / cos_beta);
   }
   BxDFSample sample(const Vec3& wo, Point2 u) const {
     BxDFSample s;
