@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Runs the Google Benchmark programs (single thread) and prints each result in M items/s next
-# to the pbrt-v3 reference figure where there is one (goal: 2× the reference).
+# Runs the model benchmarks (single thread) and prints each result in M items/s next to the
+# pbrt-v3 reference figure where there is one (goal: 2× the reference); then the other
+# benchmark programs that are built (measured data, renderer) and the Python API timing.
 # Usage: tools/run-bench.sh [BUILD] [extra benchmark flags, e.g. --benchmark_filter=ggx]
 set -euo pipefail
 BUILD=${1:-build}
@@ -35,3 +36,16 @@ for r in rows:
     extra = f"{ref:8.1f} {2 * ref:8.1f} {rate / (2 * ref):7.2f}x" if ref else ""
     print(f"{r['name']:58s} {rate:10.1f} {extra}")
 PY
+
+for other in "$BUILD/bench/measured/bxdf_bench_measured" "$BUILD/bench/render/bxdf_bench_render"; do
+  if [ -x "$other" ]; then
+    echo
+    echo "== $(basename "$other")"
+    "$other"
+  fi
+done
+if [ -d "$BUILD/python" ]; then
+  echo
+  echo "== Python API (bench/python_bench.py)"
+  PYTHONPATH="$BUILD/python" /usr/bin/python3 bench/python_bench.py
+fi
