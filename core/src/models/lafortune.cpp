@@ -115,7 +115,8 @@ ModelInfo lafortune_model() {
               rgb_param("cz", default_cz, -100.0, 100.0, "Lobe coefficient Cz (on wo.z wi.z)"),
               rgb_param("exponent", default_n, 0.0, 10000.0, "Lobe exponent n"),
           },
-          "Lobes max(0, Cx wo.x wi.x + Cy wo.y wi.y + Cz wo.z wi.z)^n; Cx = Cy = -Cz is Phong"),
+          "Lobes max(0, Cx wo.x wi.x + Cy wo.y wi.y + Cz wo.z wi.z)^n; Cx = Cy = -Cz is Phong. "
+          "Each lobe's peak max(|Cx|, |Cy|, |Cz|)^n must stay <= 1e20"),
   };
   m.create = [](const ParamSet& p) {
     std::vector<LafortuneLobe> lobes;
