@@ -248,20 +248,31 @@ def test_other_lights_and_area_light_render():
 
 
 BIG = {"samples": 64, "max_bounces": 2, "pixel_filter": "box", "threads": 1, "samples_per_pass": 1}
+# About 3 s on one thread if nobody stops it: a cancel that returns well before that stopped it.
+LONG = dict(BIG, samples=1024, max_bounces=3)
+
+
+def long_scene():
+    scene = scene_dict({"name": "m", "model": "lambertian", "params": {"reflectance": 0.5}})
+    scene["resolution"] = (96, 96)
+    scene["world"] = {"color": [0.5, 0.5, 0.5]}
+    return scene
 
 
 def test_cancel_by_returning_false():
-    material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.5}}
     calls = []
 
     def on_progress(done, total, image):
         calls.append((done, total, image))
-        return False
+        return len(calls) < 3
 
-    image, stats = bxdf.render(scene_dict(material), BIG, on_progress, return_stats=True)
-    assert stats["cancelled"] and stats["samples_per_pixel"] < 64
-    assert image.shape == (SIZE, SIZE, 4) and np.all(np.isfinite(image))
-    assert calls and calls[0][1] > 0 and calls[0][0] <= calls[0][1]
+    started = time.perf_counter()
+    image, stats = bxdf.render(long_scene(), LONG, on_progress, return_stats=True)
+    assert time.perf_counter() - started < 1.0
+    assert stats["cancelled"] and stats["samples_per_pixel"] < 1024
+    assert len(calls) == 3  # not called again once cancelled
+    assert image.shape == (96, 96, 4) and np.all(np.isfinite(image))
+    assert calls[0][1] > 0 and calls[0][0] <= calls[0][1]
 
 
 def test_progress_reports_tiles_and_partial_images():
@@ -283,18 +294,17 @@ class Boom(Exception):
 
 
 def test_exception_in_progress_propagates_after_stopping():
-    material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.5}}
     calls = []
 
     def on_progress(done, total, image):
         calls.append(done)
         raise Boom("stop here")
 
-    threads_before = threading.active_count()
+    started = time.perf_counter()
     with pytest.raises(Boom, match="stop here"):
-        bxdf.render(scene_dict(material), BIG, on_progress)
+        bxdf.render(long_scene(), LONG, on_progress)
+    assert time.perf_counter() - started < 1.0  # the render stopped, not ran to its end
     assert len(calls) == 1  # not called again once cancelled
-    assert threading.active_count() == threads_before
 
 
 def test_on_progress_must_be_callable():
@@ -304,7 +314,6 @@ def test_on_progress_must_be_callable():
 
 
 def test_gil_released_while_rendering():
-    material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.5}}
     counter = [0]
     stop = threading.Event()
 
@@ -318,10 +327,7 @@ def test_gil_released_while_rendering():
     try:
         time.sleep(0.01)
         before = counter[0]
-        scene = scene_dict(material)
-        scene["resolution"] = (96, 96)
-        scene["world"] = {"color": [0.5, 0.5, 0.5]}
-        _, stats = bxdf.render(scene, dict(BIG, samples=64, max_bounces=3), return_stats=True)
+        _, stats = bxdf.render(long_scene(), dict(LONG, samples=64), return_stats=True)
         during = counter[0] - before
     finally:
         stop.set()
@@ -329,7 +335,7 @@ def test_gil_released_while_rendering():
     assert stats["seconds"] > 0.1  # long enough for the check to mean something
     # The spinner ticks about once a millisecond when it can run; with the GIL held throughout
     # it could not tick at all.
-    assert during >= 0.25 * stats["seconds"] / 0.001
+    assert during >= max(5, 0.1 * stats["seconds"] / 0.001)
 
 
 def test_render_scene_file(tmp_path):
@@ -484,17 +490,21 @@ def test_ctrl_c_stops_the_render_and_raises_keyboard_interrupt():
     import os
     import signal
 
-    material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.5}}
-    scene = scene_dict(material)
-    scene["resolution"] = (96, 96)
-    scene["world"] = {"color": [0.5, 0.5, 0.5]}
-    # About 3 s uninterrupted on one thread; SIGINT arrives after 50 ms.
+    scene = long_scene()
     timer = threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGINT))
     started = time.perf_counter()
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt):
-            bxdf.render(scene, dict(BIG, samples=1024, max_bounces=3))
+            bxdf.render(scene, LONG)
     finally:
         timer.cancel()
     assert time.perf_counter() - started < 1.0
+
+
+def test_empty_scene_shows_the_world():
+    scene = good_scene()
+    scene["meshes"] = []
+    scene["world"] = {"color": [0.25, 0.5, 1.0]}
+    image = bxdf.render(scene, {"samples": 2, "max_bounces": 0})
+    np.testing.assert_allclose(image[..., :3], np.broadcast_to([0.25, 0.5, 1.0], (SIZE, SIZE, 3)), rtol=1e-6)
