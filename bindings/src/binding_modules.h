@@ -12,6 +12,7 @@ void bind_presets(pybind11::module_& m);    // presets(), make_preset() (presets
 void bind_material(pybind11::module_& m);   // save_material(), load_material() (material.cpp)
 void bind_measured(pybind11::module_& m);   // load_measured() (measured.cpp)
 void bind_fit(pybind11::module_& m);        // fit(), fit_error() (fit.cpp)
-void bind_reference(pybind11::module_& m);  // scalar-path hooks the tests compare with (reference.cpp)
+void bind_reference(pybind11::module_& m);
+void bind_render(pybind11::module_& m);     // render(), render_scene_file() (render.cpp; with plugin/)  // scalar-path hooks the tests compare with (reference.cpp)
 
 }  // namespace bxdf::python

@@ -35,4 +35,7 @@ PYBIND11_MODULE(_bxdf, m) {
   bxdf::python::bind_measured(m);
   bxdf::python::bind_fit(m);
   bxdf::python::bind_reference(m);
+#ifdef BXDF_HAVE_RENDER
+  bxdf::python::bind_render(m);
+#endif
 }

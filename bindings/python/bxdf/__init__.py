@@ -64,3 +64,12 @@ try:
     __all__ += ["fit", "fit_error"]
 except ImportError:  # pragma: no cover - a build without Ceres
     pass
+
+# render() and render_scene_file() exist when the build has the Embree renderer (plugin/); see
+# bxdf.render.__doc__.
+try:
+    from ._bxdf import render, render_scene_file
+
+    __all__ += ["render", "render_scene_file"]
+except ImportError:  # pragma: no cover - a build without the renderer
+    pass

@@ -1,6 +1,6 @@
 # Type stubs for the bxdf package (the compiled bxdf._bxdf plus bxdf/__init__.py).
 import os
-from typing import Any, Literal, Sequence, SupportsFloat, TypedDict, Union
+from typing import Any, Callable, Literal, Mapping, Sequence, SupportsFloat, TypedDict, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -119,3 +119,67 @@ def lobe_mesh(
     phi_o: float = 0.0,
     hemisphere: Literal["upper", "lower"] = "upper",
 ) -> tuple[F32, I32]: ...
+
+class RenderStats(TypedDict, total=False):
+    seconds: float
+    samples_per_pixel: int
+    camera_samples: int
+    rays: int
+    shadow_rays: int
+    rejected_samples: int
+    cancelled: bool
+    warnings: list[str]
+    convert_seconds: float  # render() only
+    bvh_seconds: float  # render() only
+
+class RenderSettingsDict(TypedDict, total=False):
+    samples: int
+    max_bounces: int
+    pixel_filter: Literal["box", "gaussian", "pixel_center", "BOX", "GAUSSIAN", "PIXEL_CENTER"]
+    filter_width: float
+    threads: int
+    seed: int
+    tile_size: int
+    samples_per_pass: int
+    russian_roulette_depth: int
+    transparent_background: bool
+
+# on_progress(done_tiles, total_tiles, partial_image_or_None) -> False to cancel
+ProgressCallback = Callable[[int, int, F32 | None], bool | None]
+
+@overload
+def render(
+    scene: Mapping[str, Any],
+    settings: RenderSettingsDict | None = None,
+    on_progress: ProgressCallback | None = None,
+    *,
+    bottom_up: bool = False,
+    return_stats: Literal[False] = False,
+) -> F32: ...
+@overload
+def render(
+    scene: Mapping[str, Any],
+    settings: RenderSettingsDict | None = None,
+    on_progress: ProgressCallback | None = None,
+    *,
+    bottom_up: bool = False,
+    return_stats: Literal[True],
+) -> tuple[F32, RenderStats]: ...
+@overload
+def render_scene_file(
+    path: str | os.PathLike[str],
+    settings: RenderSettingsDict | None = None,
+    on_progress: ProgressCallback | None = None,
+    *,
+    bottom_up: bool = False,
+    return_stats: Literal[False] = False,
+) -> F32: ...
+@overload
+def render_scene_file(
+    path: str | os.PathLike[str],
+    settings: RenderSettingsDict | None = None,
+    on_progress: ProgressCallback | None = None,
+    *,
+    bottom_up: bool = False,
+    return_stats: Literal[True],
+) -> tuple[F32, RenderStats]: ...

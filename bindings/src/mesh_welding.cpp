@@ -1,0 +1,116 @@
+#include "mesh_welding.h"
+
+#include <cmath>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+namespace bxdf::python {
+
+namespace {
+
+// Rows a and b of a width-column array hold the same numbers (bitwise, so -0 and NaN do not merge).
+bool same_values(const float* rows, int64_t a, int64_t b, int width) {
+  return a >= 0 && b >= 0 && std::memcmp(rows + width * a, rows + width * b, sizeof(float) * width) == 0;
+}
+
+}  // namespace
+
+render::Mesh weld_corners(const IndexedMeshArrays& in) {
+  render::Mesh out;
+  const size_t corners = 3 * in.num_triangles;
+  const bool has_normals = in.normals && in.normal_indices;
+  const bool has_uvs = in.uvs && in.uv_indices;
+  out.indices.resize(corners);
+  if (in.material_indices) out.material_indices.assign(in.material_indices, in.material_indices + in.num_triangles);
+
+  // Output vertex → (position, normal, uv) indices; per position, the head of its split list.
+  std::vector<int64_t> head(in.num_positions, -1), next, src_p, src_n, src_uv;
+  next.reserve(in.num_positions);
+  src_p.reserve(in.num_positions);
+  for (size_t c = 0; c < corners; ++c) {
+    const int64_t p = in.triangles[c];
+    const int64_t n = has_normals ? in.normal_indices[c] : -1;
+    const int64_t t = has_uvs ? in.uv_indices[c] : -1;
+    int64_t found = -1;
+    int depth = 0;
+    for (int64_t o = head[p]; o >= 0 && depth < kMaxSplitSearch; o = next[o], ++depth) {
+      // Equal values count as equal attributes: Blender gives every corner its own UV and
+      // split-normal index even where the values agree, and those corners should share a vertex.
+      const bool same_normal = src_n[o] == n || same_values(in.normals, src_n[o], n, 3);
+      const bool same_uv = src_uv[o] == t || same_values(in.uvs, src_uv[o], t, 2);
+      if (same_normal && same_uv) {
+        found = o;
+        break;
+      }
+    }
+    if (found < 0) {
+      found = static_cast<int64_t>(src_p.size());
+      src_p.push_back(p);
+      src_n.push_back(n);
+      src_uv.push_back(t);
+      next.push_back(head[p]);
+      head[p] = found;
+    }
+    out.indices[c] = static_cast<uint32_t>(found);
+  }
+
+  const size_t nv = src_p.size();
+  out.positions.resize(3 * nv);
+  if (has_normals) out.normals.resize(3 * nv);
+  if (has_uvs) out.uvs.resize(2 * nv);
+  for (size_t v = 0; v < nv; ++v) {
+    for (int k = 0; k < 3; ++k) out.positions[3 * v + k] = in.positions[3 * src_p[v] + k];
+    if (has_normals)
+      for (int k = 0; k < 3; ++k) out.normals[3 * v + k] = in.normals[3 * src_n[v] + k];
+    if (has_uvs)
+      for (int k = 0; k < 2; ++k) out.uvs[2 * v + k] = in.uvs[2 * src_uv[v] + k];
+  }
+  return out;
+}
+
+render::Mesh transformed(const render::Mesh& mesh, const std::array<double, 16>& m) {
+  render::Mesh out;
+  out.material = mesh.material;
+  out.material_indices = mesh.material_indices;
+  out.uvs = mesh.uvs;
+  out.indices = mesh.indices;
+
+  const size_t nv = mesh.num_vertices();
+  out.positions.resize(3 * nv);
+  for (size_t v = 0; v < nv; ++v) {
+    const double x = mesh.positions[3 * v], y = mesh.positions[3 * v + 1], z = mesh.positions[3 * v + 2];
+    for (int r = 0; r < 3; ++r)
+      out.positions[3 * v + r] = static_cast<float>(m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3]);
+  }
+
+  // Cofactor matrix of the 3×3 part = det · (A⁻¹)ᵀ: the normal transform up to scale.
+  auto a = [&](int r, int c) { return m[4 * r + c]; };
+  double cof[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+      cof[r][c] = a(r1, c1) * a(r2, c2) - a(r1, c2) * a(r2, c1);
+    }
+  const double det = a(0, 0) * cof[0][0] + a(0, 1) * cof[0][1] + a(0, 2) * cof[0][2];
+
+  if (det < 0.0) {
+    // A mirror turns counter-clockwise into clockwise; swapping two corners restores the front.
+    for (size_t t = 0; t < mesh.num_triangles(); ++t) std::swap(out.indices[3 * t + 1], out.indices[3 * t + 2]);
+  }
+  if (!mesh.normals.empty() && det != 0.0) {
+    const double sign = det > 0.0 ? 1.0 : -1.0;
+    out.normals.resize(3 * nv);
+    for (size_t v = 0; v < nv; ++v) {
+      const double x = mesh.normals[3 * v], y = mesh.normals[3 * v + 1], z = mesh.normals[3 * v + 2];
+      double n[3];
+      for (int r = 0; r < 3; ++r) n[r] = sign * (cof[r][0] * x + cof[r][1] * y + cof[r][2] * z);
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      const double inv = len > 0.0 ? 1.0 / len : 0.0;
+      for (int r = 0; r < 3; ++r) out.normals[3 * v + r] = static_cast<float>(n[r] * inv);
+    }
+  }
+  return out;
+}
+
+}  // namespace bxdf::python

@@ -1,0 +1,287 @@
+// bxdf.render() and bxdf.render_scene_file(): the Embree renderer (plugin/) from Python.
+//
+// The render runs on its own C++ thread (with TBB workers under it) while the calling thread
+// waits with the GIL released; whenever tiles finish or a pass completes it takes the GIL back,
+// checks for Ctrl-C (PyErr_CheckSignals) and calls on_progress. Cancelling (a False return, an
+// exception, KeyboardInterrupt) sets the renderer's cancel flag and waits for the render to stop
+// before anything is returned or raised, so no C++ thread outlives the call.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstring>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "binding_modules.h"
+#include "bxdf/render/renderer.h"
+#include "bxdf/render/scene_json.h"
+#include "scene_from_python.h"
+
+namespace bxdf::python {
+
+namespace py = pybind11;
+
+namespace {
+
+// Linear RGBA rows (top first) as a (height, width, 4) float32 array, flipped when bottom_up.
+py::array_t<float> image_array(const float* rgba, int width, int height, bool bottom_up) {
+  py::array_t<float> image({height, width, 4});
+  float* out = image.mutable_data();
+  const size_t row = static_cast<size_t>(width) * 4;
+  for (int y = 0; y < height; ++y)
+    std::memcpy(out + row * static_cast<size_t>(y), rgba + row * static_cast<size_t>(bottom_up ? height - 1 - y : y),
+                row * sizeof(float));
+  return image;
+}
+
+// What the render thread tells the waiting Python thread.
+struct Channel {
+  std::mutex mutex;
+  std::condition_variable wake;
+  int tiles_done = 0, tiles_total = 0;
+  bool tiles_changed = false;
+  std::vector<float> pass_image;  // the film after the latest pass not yet handed to Python
+  bool pass_ready = false;
+  bool finished = false;
+};
+
+py::object run_render(const render::Scene& scene, const render::CameraSettings& camera,
+                      const render::RenderSettings& settings, const py::object& on_progress, bool bottom_up,
+                      bool return_stats, std::vector<std::string> warnings, py::dict extra_stats) {
+  if (!on_progress.is_none() && !PyCallable_Check(on_progress.ptr()))
+    throw ParameterError("on_progress: " + py::repr(on_progress).cast<std::string>() +
+                         " is not callable; expected a function (done, total, image_or_None) -> bool, or None");
+  // Settings the renderer would refuse are refused here, before any thread starts.
+  { render::Camera check(camera, settings.width, settings.height); }
+
+  Channel channel;
+  std::atomic<bool> cancel{false};
+  const bool has_callback = !on_progress.is_none();
+  render::RenderCallbacks callbacks;
+  callbacks.cancel = &cancel;
+  callbacks.on_tile = [&](const render::RenderProgress& p) {
+    {
+      std::lock_guard<std::mutex> lock(channel.mutex);
+      channel.tiles_done = p.tiles_done;
+      channel.tiles_total = p.tiles_total;
+      channel.tiles_changed = true;
+    }
+    channel.wake.notify_one();
+    return !cancel.load();
+  };
+  callbacks.on_pass = [&](const render::Film& film, const render::RenderProgress& p) {
+    if (!has_callback || p.pass >= p.passes) return;  // the last pass's image is the result
+    std::vector<float> rgba(static_cast<size_t>(film.width()) * static_cast<size_t>(film.height()) * 4);
+    film.rgba(rgba.data());
+    {
+      std::lock_guard<std::mutex> lock(channel.mutex);
+      channel.pass_image = std::move(rgba);
+      channel.pass_ready = true;
+      channel.tiles_done = p.tiles_done;
+      channel.tiles_total = p.tiles_total;
+    }
+    channel.wake.notify_one();
+  };
+
+  render::Film film;
+  render::RenderStats stats;
+  std::exception_ptr render_error;
+  std::thread worker([&] {
+    try {
+      film = render::render_scene(scene, camera, settings, callbacks, &stats);
+    } catch (...) {
+      render_error = std::current_exception();
+    }
+    {
+      std::lock_guard<std::mutex> lock(channel.mutex);
+      channel.finished = true;
+    }
+    channel.wake.notify_one();
+  });
+
+  std::optional<py::error_already_set> python_error;  // from on_progress or Ctrl-C
+  bool stopped_by_callback = false;
+  for (;;) {
+    int done = 0, total = 0;
+    bool tiles_changed = false, pass_ready = false, finished = false;
+    std::vector<float> pass_image;
+    {
+      py::gil_scoped_release release;
+      std::unique_lock<std::mutex> lock(channel.mutex);
+      // The timeout bounds how late Ctrl-C is noticed when nothing else happens.
+      channel.wake.wait_for(lock, std::chrono::milliseconds(50),
+                            [&] { return channel.finished || channel.tiles_changed || channel.pass_ready; });
+      done = channel.tiles_done;
+      total = channel.tiles_total;
+      tiles_changed = channel.tiles_changed;
+      pass_ready = channel.pass_ready;
+      finished = channel.finished;
+      if (pass_ready) pass_image.swap(channel.pass_image);
+      channel.tiles_changed = channel.pass_ready = false;
+    }
+    // Cancelled: only wait for the render to stop.
+    if (python_error || stopped_by_callback) {
+      if (finished) break;
+      continue;
+    }
+    if (PyErr_CheckSignals() != 0) {
+      python_error.emplace();
+      cancel = true;
+      continue;
+    }
+    // The last tiles are reported too (done == total), after the render has finished.
+    if (!has_callback || !(tiles_changed || pass_ready)) {
+      if (finished) break;
+      continue;
+    }
+    try {
+      py::object image = pass_ready ? py::object(image_array(pass_image.data(), settings.width, settings.height, bottom_up))
+                                    : py::object(py::none());
+      py::object keep_going = on_progress(done, total, image);
+      // Only an explicit False stops: a callback that returns nothing lets the render go on.
+      if (keep_going.ptr() == Py_False) {
+        stopped_by_callback = true;
+        cancel = true;
+      }
+    } catch (py::error_already_set& e) {
+      python_error.emplace(std::move(e));
+      cancel = true;
+    }
+    if (finished) break;
+  }
+  {
+    py::gil_scoped_release release;
+    worker.join();
+  }
+  if (python_error) throw std::move(*python_error);
+  if (render_error) std::rethrow_exception(render_error);
+
+  std::vector<float> rgba(static_cast<size_t>(film.width()) * static_cast<size_t>(film.height()) * 4);
+  film.rgba(rgba.data());
+  py::array_t<float> image = image_array(rgba.data(), film.width(), film.height(), bottom_up);
+  if (!return_stats) return std::move(image);
+  py::dict s;
+  s["seconds"] = stats.seconds;
+  s["samples_per_pixel"] = stats.samples_per_pixel;
+  s["camera_samples"] = stats.camera_samples;
+  s["rays"] = stats.rays;
+  s["shadow_rays"] = stats.shadow_rays;
+  s["rejected_samples"] = stats.rejected_samples;
+  s["cancelled"] = stats.cancelled;
+  py::list w;
+  for (const auto& text : warnings) w.append(text);
+  s["warnings"] = w;
+  for (const auto& item : extra_stats) s[item.first] = item.second;
+  return py::make_tuple(image, s);
+}
+
+constexpr const char* kRenderDoc = R"doc(render(scene, settings=None, on_progress=None, *, bottom_up=False, return_stats=False) -> image or (image, stats)
+
+Renders ``scene`` with the Embree path tracer and returns a ``(height, width, 4)`` float32 array of
+linear RGBA (alpha 1, or coverage with ``transparent_background``). Rows run top to bottom (numpy's
+image convention); ``bottom_up=True`` gives Blender's order (``RenderResult`` rects, ``Image.pixels``),
+for the partial images too.
+
+``scene`` is the dict of the Blender add-on's ``export.export_scene()`` (Blender units: metres, W):
+
+- ``"resolution"``: ``(width, height)`` in pixels (required).
+- ``"camera"``: ``{"matrix": (4, 4) camera→world (looks along −Z, +Y up; scale ignored), "lens": mm,
+  "sensor_width", "sensor_height": mm, "sensor_fit": "auto"|"horizontal"|"vertical",
+  "shift": (x, y) in units of the fitted side, "clip": (start, end) depths}`` (only ``matrix`` is
+  required; ``"type"``, when given, must be ``"persp"``).
+- ``"materials"``: list of ``{"name", "model", "params"}`` made as ``bxdf.make(model, **params)``,
+  optionally with ``"emission"`` (RGB radiance, W/(m² sr), two-sided: the mesh becomes an area light).
+- ``"meshes"``: list of ``{"positions": (V, 3) float, "triangles": (T, 3) int,
+  "normals": (N, 3) float + "normal_indices": (T, 3) int (or both None: flat shading),
+  "uvs": (U, 2) float + "uv_indices": (T, 3) int (or both None),
+  "material_indices": (T,) int into "materials", -1 = none (a grey Lambertian, reflectance 0.8)}``.
+  Counter-clockwise triangles face front. Normals and UVs are indexed separately from positions;
+  vertices are split only where a corner's (position, normal, uv) triple differs.
+- ``"instance_mesh"``: (I,) int into "meshes" and ``"instance_matrix"``: (I, 4, 4) object→world
+  (affine). Each instance is flattened into world space (normals by the inverse transpose; a
+  mirroring matrix keeps the front). Without these two keys every mesh is drawn once, as is.
+- ``"lights"``: list of dicts by ``"type"``: ``"point"``: position, intensity (RGB W/sr), radius
+  (rendered as 0, with a warning); ``"spot"``: as point plus direction, spot_size (full angle, rad),
+  spot_blend; ``"sun"``: direction (the way light travels), irradiance (RGB W/m²), angle (rad);
+  ``"area"``: shape ("square"|"rectangle"|"disk"|"ellipse"), size ((x, y) m), matrix (light→world;
+  it faces −Z), radiance (RGB W/(m² sr)); an area light becomes an emissive mesh, which emits from
+  both sides (a warning says so).
+- ``"world"``: ``{"color": RGB radiance}``. Other keys (``"warnings"``, names, ...) are ignored.
+
+``settings`` (dict or None; unknown keys are refused): ``samples`` (16) per pixel, ``max_bounces``
+(8; 0 = direct light only), ``pixel_filter`` ("box", "gaussian" or "pixel_center", any case;
+Gaussian), ``filter_width`` (1.5 px), ``threads`` (0 = all cores), ``seed`` (0), ``tile_size`` (16),
+``samples_per_pass`` (0 = automatic), ``russian_roulette_depth`` (3), ``transparent_background``
+(False).
+
+``on_progress(done, total, image)`` is called on the calling thread, holding the GIL, while the
+render runs on C++ threads: ``done``/``total`` count tiles over the whole render; ``image`` is the
+partial result (same layout as the return value) after each pass but the last, else None. Return
+False to cancel (any other return value, None included, continues). The GIL is released while
+waiting, so other Python threads run.
+
+Cancelled by on_progress, the render stops within a tile and the image of the finished passes is
+returned (``stats["cancelled"]`` is True). An exception raised in on_progress, or KeyboardInterrupt
+(Ctrl-C), stops the render the same way and is then raised. A bad scene or setting raises
+ValueError naming the field, e.g. ``scene['meshes'][2]['normal_indices']: index 9 out of range [0, 8)``.
+
+With ``return_stats=True`` the result is ``(image, stats)``, stats a dict: ``seconds``,
+``samples_per_pixel`` (completed), ``camera_samples``, ``rays``, ``shadow_rays``,
+``rejected_samples`` (NaN/Inf/negative radiance dropped), ``cancelled``, ``warnings`` (list of str:
+what was rendered approximately), and for :func:`render` ``convert_seconds`` (reading, welding and
+flattening the meshes) and ``bvh_seconds`` (building Embree's BVH); ``seconds`` is the render alone.)doc";
+
+constexpr const char* kRenderFileDoc = R"doc(render_scene_file(path, settings=None, on_progress=None, *, bottom_up=False, return_stats=False) -> image or (image, stats)
+
+Renders a JSON scene file of the ``bxdf-render`` CLI (format: plugin/README.md). Its ``"render"``
+object gives the resolution and settings; ``settings`` (same keys as :func:`render`) overrides them.
+Everything else is as :func:`render`; a bad file raises ValueError naming the file and the JSON path.)doc";
+
+}  // namespace
+
+void bind_render(py::module_& m) {
+  m.def(
+      "render",
+      [](const py::object& scene, const py::object& settings, const py::object& on_progress, bool bottom_up,
+         bool return_stats) {
+        SceneFromPython s = scene_from_python(scene);
+        render::RenderSettings rs;
+        rs.filter = render::FilterType::Gaussian;  // Blender's defaults
+        rs.filter_width = 1.5f;
+        rs.width = s.width;
+        rs.height = s.height;
+        apply_render_settings(settings, rs);
+        py::dict times;
+        times["convert_seconds"] = s.convert_seconds;
+        times["bvh_seconds"] = s.bvh_seconds;
+        return run_render(*s.scene, s.camera, rs, on_progress, bottom_up, return_stats, std::move(s.warnings), times);
+      },
+      py::arg("scene"), py::arg("settings") = py::none(), py::arg("on_progress") = py::none(), py::kw_only(),
+      py::arg("bottom_up") = false, py::arg("return_stats") = false, kRenderDoc);
+
+  m.def(
+      "render_scene_file",
+      [](const py::object& path, const py::object& settings, const py::object& on_progress, bool bottom_up,
+         bool return_stats) {
+        if (!py::isinstance<py::str>(path) && !py::hasattr(path, "__fspath__"))
+          throw ParameterError("path: " + py::repr(path).cast<std::string>() + " is not a path; expected a str or os.PathLike");
+        const std::string file = py::module_::import("os").attr("fspath")(path).cast<std::string>();
+        render::LoadedScene loaded;
+        {
+          py::gil_scoped_release release;
+          loaded = render::load_scene_json(file);
+        }
+        apply_render_settings(settings, loaded.settings);
+        return run_render(*loaded.scene, loaded.camera, loaded.settings, on_progress, bottom_up, return_stats, {}, py::dict());
+      },
+      py::arg("path"), py::arg("settings") = py::none(), py::arg("on_progress") = py::none(), py::kw_only(),
+      py::arg("bottom_up") = false, py::arg("return_stats") = false, kRenderFileDoc);
+}
+
+}  // namespace bxdf::python

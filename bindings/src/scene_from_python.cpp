@@ -1,0 +1,580 @@
+#include "scene_from_python.h"
+
+#include <pybind11/numpy.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "bxdf/params.h"
+#include "bxdf/render/filter.h"
+#include "bxdf/render/lights.h"
+#include "mesh_welding.h"
+#include "model.h"
+
+namespace bxdf::python {
+
+namespace {
+
+using render::Light;
+using render::Material;
+using render::Mesh;
+
+using IndexArray = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
+using Float32Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
+using Float64Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+[[noreturn]] void refuse(const std::string& path, const std::string& why) {
+  throw ParameterError(path + ": " + why);
+}
+
+std::string key_path(const std::string& path, const char* key) { return path + "['" + key + "']"; }
+std::string item_path(const std::string& path, size_t i) { return path + "[" + std::to_string(i) + "]"; }
+
+std::string short_repr(py::handle v) {
+  std::string s = py::repr(v).cast<std::string>();
+  return s.size() > 80 ? s.substr(0, 77) + "..." : s;
+}
+
+std::string type_name(py::handle v) { return py::str(py::type::handle_of(v).attr("__name__")).cast<std::string>(); }
+
+std::string num(double v) {
+  std::string s = py::repr(py::float_(v)).cast<std::string>();
+  return s;
+}
+
+py::dict as_dict(py::handle v, const std::string& path) {
+  if (!PyDict_Check(v.ptr())) refuse(path, "is a " + type_name(v) + "; expected a dict");
+  return py::reinterpret_borrow<py::dict>(v);
+}
+
+bool has(const py::dict& d, const char* key) { return d.contains(key) && !d[key].is_none(); }
+
+py::object required(const py::dict& d, const char* key, const std::string& path, const std::string& expected) {
+  if (!d.contains(key)) refuse(key_path(path, key), "is missing; expected " + expected);
+  py::object v = d[key];
+  if (v.is_none()) refuse(key_path(path, key), "is None; expected " + expected);
+  return v;
+}
+
+py::list as_list(py::handle v, const std::string& path, const std::string& expected) {
+  if (!PyList_Check(v.ptr()) && !PyTuple_Check(v.ptr()))
+    refuse(path, "is a " + type_name(v) + "; expected " + expected);
+  return py::list(py::reinterpret_borrow<py::object>(v));
+}
+
+double number(py::handle v, const std::string& path, double lo, double hi, const std::string& range) {
+  if (PyBool_Check(v.ptr()) || !PyNumber_Check(v.ptr()) || PyComplex_Check(v.ptr()))
+    refuse(path, short_repr(v) + " is not a number; expected a number in " + range);
+  double x;
+  try {
+    x = v.cast<double>();
+  } catch (const py::cast_error&) {
+    refuse(path, short_repr(v) + " is not a real number; expected a number in " + range);
+  }
+  if (!std::isfinite(x) || x < lo || x > hi) refuse(path, num(x) + " is out of range; expected a number in " + range);
+  return x;
+}
+
+long long integer(py::handle v, const std::string& path, long long lo, long long hi) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (PyBool_Check(v.ptr()) || PyFloat_Check(v.ptr()) || !PyIndex_Check(v.ptr()))
+    refuse(path, short_repr(v) + " is not an integer; expected an integer in " + range);
+  long long x;
+  try {
+    x = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr())).cast<long long>();
+  } catch (const std::exception&) {
+    PyErr_Clear();
+    refuse(path, short_repr(v) + " is out of range; expected an integer in " + range);
+  }
+  if (x < lo || x > hi) refuse(path, std::to_string(x) + " is out of range; expected an integer in " + range);
+  return x;
+}
+
+std::string text(py::handle v, const std::string& path, const std::string& expected) {
+  if (!py::isinstance<py::str>(v)) refuse(path, short_repr(v) + " is not a str; expected " + expected);
+  return v.cast<std::string>();
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// Any array-like of real numbers with exactly `shape` (-1 = any length), as C-contiguous T.
+template <typename Array>
+Array real_array(py::handle v, const std::string& path, std::vector<py::ssize_t> shape, bool integers_only) {
+  const std::string dims = [&] {
+    std::string s = "(";
+    for (size_t i = 0; i < shape.size(); ++i)
+      s += (i ? ", " : "") + (shape[i] < 0 ? std::string(i == 0 ? "N" : "M") : std::to_string(shape[i]));
+    return s + (shape.size() == 1 ? ",)" : ")");
+  }();
+  const std::string expected = std::string(integers_only ? "an integer" : "a real") + " array of shape " + dims;
+  py::array a;
+  try {
+    a = py::module_::import("numpy").attr("asarray")(v);
+  } catch (py::error_already_set&) {
+    refuse(path, "is not an array; expected " + expected);
+  }
+  const char kind = a.dtype().kind();
+  if (integers_only ? (kind != 'i' && kind != 'u') : (kind != 'f' && kind != 'i' && kind != 'u'))
+    refuse(path, "has dtype " + py::str(a.dtype()).cast<std::string>() + "; expected " + expected);
+  bool ok = a.ndim() == static_cast<py::ssize_t>(shape.size());
+  for (size_t i = 0; ok && i < shape.size(); ++i) ok = shape[i] < 0 || a.shape(i) == shape[i];
+  if (!ok) {
+    std::string got = "(";
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) got += (i ? ", " : "") + std::to_string(a.shape(i));
+    got += a.ndim() == 1 ? ",)" : ")";
+    refuse(path, "has shape " + got + "; expected " + expected);
+  }
+  return Array::ensure(a);
+}
+
+void require_finite(const float* p, size_t n, size_t width, const std::string& path) {
+  for (size_t i = 0; i < n; ++i)
+    if (!std::isfinite(p[i]))
+      refuse(path, "row " + std::to_string(i / width) + " has " + num(p[i]) + "; expected finite numbers");
+}
+
+void require_indices(const IndexArray& a, long long lo, long long hi, const std::string& path) {
+  const int64_t* p = a.data();
+  const size_t n = static_cast<size_t>(a.size());
+  const size_t width = a.ndim() == 2 ? static_cast<size_t>(a.shape(1)) : 1;
+  for (size_t i = 0; i < n; ++i)
+    if (p[i] < lo || p[i] >= hi)
+      refuse(path, "index " + std::to_string(p[i]) + " out of range [" + std::to_string(lo) + ", " +
+                       std::to_string(hi) + ") (row " + std::to_string(i / width) + ")");
+}
+
+std::vector<double> numbers(py::handle v, const std::string& path, py::ssize_t count) {
+  auto a = real_array<Float64Array>(v, path, {count}, false);
+  std::vector<double> out(a.data(), a.data() + a.size());
+  for (double x : out)
+    if (!std::isfinite(x)) refuse(path, "has " + num(x) + "; expected finite numbers");
+  return out;
+}
+
+Vec3 vec3(py::handle v, const std::string& path) {
+  const auto x = numbers(v, path, 3);
+  return {static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2])};
+}
+
+RGB colour(py::handle v, const std::string& path) {
+  const auto x = numbers(v, path, 3);
+  for (double c : x)
+    if (c < 0.0) refuse(path, "has " + num(c) + "; expected three numbers in [0, inf)");
+  return {static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2])};
+}
+
+std::array<double, 16> checked_matrix(const double* data, const std::string& path, bool affine) {
+  std::array<double, 16> m;
+  std::copy(data, data + 16, m.begin());
+  for (double x : m)
+    if (!std::isfinite(x)) refuse(path, "has " + num(x) + "; expected a finite 4x4 matrix");
+  if (affine && (std::abs(m[12]) > 1e-6 || std::abs(m[13]) > 1e-6 || std::abs(m[14]) > 1e-6 ||
+                 std::abs(m[15] - 1.0) > 1e-6))
+    refuse(path, "has last row (" + num(m[12]) + ", " + num(m[13]) + ", " + num(m[14]) + ", " + num(m[15]) +
+                     "); expected an affine matrix with last row (0, 0, 0, 1)");
+  return m;
+}
+
+std::array<double, 16> matrix4(py::handle v, const std::string& path, bool affine) {
+  const auto a = real_array<Float64Array>(v, path, {4, 4}, false);
+  return checked_matrix(a.data(), path, affine);
+}
+
+Vec3 transform_point(const std::array<double, 16>& m, double x, double y, double z) {
+  auto row = [&](int r) { return static_cast<float>(m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3]); };
+  return {row(0), row(1), row(2)};
+}
+
+// Wraps a builder's ParameterError (which names the parameter and its range) with the path.
+template <typename F>
+auto with_path(const std::string& path, F&& build) {
+  try {
+    return build();
+  } catch (const std::invalid_argument& e) {
+    refuse(path, e.what());
+  }
+}
+
+Material material_from_python(py::handle v, const std::string& path) {
+  const py::dict d = as_dict(v, path);
+  Material material;
+  if (has(d, "model")) {
+    const py::object model = d["model"];
+    text(model, key_path(path, "model"), "a model name (see bxdf.models())");
+    py::dict params;
+    if (has(d, "params")) params = as_dict(d["params"], key_path(path, "params"));
+    material.components.push_back(with_path(path, [&] { return make_model(model, params).bxdf; }));
+  }
+  if (has(d, "emission")) material.emission = colour(d["emission"], key_path(path, "emission"));
+  if (material.components.empty() && material.emission.r == 0.0f && material.emission.g == 0.0f &&
+      material.emission.b == 0.0f)
+    refuse(path, "has neither a 'model' nor a non-zero 'emission'; expected {'model': name, 'params': {...}}");
+  return material;
+}
+
+Light light_from_python(py::handle v, const std::string& path, std::vector<std::string>& warnings) {
+  const py::dict d = as_dict(v, path);
+  const std::string type = lower(text(required(d, "type", path, "'point', 'spot', 'sun' or 'area'"),
+                                      key_path(path, "type"), "'point', 'spot', 'sun' or 'area'"));
+  const std::string name = has(d, "name") ? py::str(d["name"]).cast<std::string>() : path;
+  if (type == "point" || type == "spot") {
+    const Vec3 position = vec3(required(d, "position", path, "(x, y, z)"), key_path(path, "position"));
+    const RGB intensity = colour(required(d, "intensity", path, "an RGB radiant intensity in W/sr"),
+                                 key_path(path, "intensity"));
+    if (has(d, "radius") && number(d["radius"], key_path(path, "radius"), 0.0, kInf, "[0, inf)") > 0.0)
+      warnings.push_back("light '" + name + "': radius " + py::str(d["radius"]).cast<std::string>() +
+                         " rendered as 0 (the renderer's point and spot lights are points: hard shadows)");
+    if (type == "point") return with_path(path, [&] { return render::point_light(position, intensity); });
+    const Vec3 direction = vec3(required(d, "direction", path, "the spot axis (x, y, z)"), key_path(path, "direction"));
+    const double size = number(required(d, "spot_size", path, "the full cone angle in radians, (0, pi]"),
+                               key_path(path, "spot_size"), 1e-9, M_PI, "(0, pi] radians");
+    const double blend =
+        number(required(d, "spot_blend", path, "a number in [0, 1]"), key_path(path, "spot_blend"), 0.0, 1.0, "[0, 1]");
+    return with_path(path, [&] {
+      return render::spot_light(position, direction, intensity, static_cast<float>(size), static_cast<float>(blend));
+    });
+  }
+  if (type == "sun") {
+    const Vec3 direction = vec3(required(d, "direction", path, "the direction light travels (x, y, z)"),
+                                key_path(path, "direction"));
+    const RGB irradiance = colour(required(d, "irradiance", path, "an RGB irradiance in W/m^2"),
+                                  key_path(path, "irradiance"));
+    const double angle = has(d, "angle") ? number(d["angle"], key_path(path, "angle"), 0.0, M_PI / 2 - 1e-6,
+                                                  "[0, pi/2) radians")
+                                         : 0.0;
+    return with_path(path, [&] { return render::sun_light(direction, irradiance, static_cast<float>(angle)); });
+  }
+  refuse(key_path(path, "type"), "unknown light type '" + type + "'; expected 'point', 'spot', 'sun' or 'area'");
+}
+
+// Blender's area light as an emissive mesh in its local XY plane (it faces local -Z), moved by its
+// matrix. Disks and ellipses are 64-gons with the radius scaled so that the area, and with it the
+// power, stays that of the true ellipse.
+Mesh area_light_mesh(const py::dict& d, const std::string& path, uint32_t material) {
+  const std::string shape = lower(text(required(d, "shape", path, "'square', 'rectangle', 'disk' or 'ellipse'"),
+                                       key_path(path, "shape"), "'square', 'rectangle', 'disk' or 'ellipse'"));
+  const bool round = shape == "disk" || shape == "ellipse";
+  if (!round && shape != "square" && shape != "rectangle")
+    refuse(key_path(path, "shape"), "unknown area light shape '" + shape + "'; expected 'square', 'rectangle', 'disk' or 'ellipse'");
+  const py::object size_obj = required(d, "size", path, "(size_x, size_y) in metres");
+  double sx, sy;
+  if (PyNumber_Check(size_obj.ptr()) && !py::isinstance<py::array>(size_obj)) {
+    sx = sy = number(size_obj, key_path(path, "size"), 1e-12, kInf, "(0, inf)");
+  } else {
+    const auto s = numbers(size_obj, key_path(path, "size"), 2);
+    for (double x : s)
+      if (x <= 0.0) refuse(key_path(path, "size"), "has " + num(x) + "; expected sizes in (0, inf)");
+    sx = s[0];
+    sy = s[1];
+  }
+  const auto m = matrix4(required(d, "matrix", path, "the light's 4x4 object-to-world matrix"), key_path(path, "matrix"), true);
+
+  Mesh mesh;
+  mesh.material = material;
+  auto add_vertex = [&](double x, double y) {
+    const Vec3 p = transform_point(m, x, y, 0.0);
+    mesh.positions.insert(mesh.positions.end(), {p.x, p.y, p.z});
+  };
+  // Counter-clockwise seen from -Z (the side that emits): clockwise in the XY plane.
+  if (!round) {
+    add_vertex(-sx / 2, -sy / 2);
+    add_vertex(-sx / 2, sy / 2);
+    add_vertex(sx / 2, sy / 2);
+    add_vertex(sx / 2, -sy / 2);
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+  } else {
+    constexpr int kSides = 64;
+    const double polygon_to_circle = std::sqrt(M_PI / (kSides / 2.0 * std::sin(2.0 * M_PI / kSides)));
+    add_vertex(0.0, 0.0);
+    for (int i = 0; i < kSides; ++i) {
+      const double phi = -2.0 * M_PI * i / kSides;
+      add_vertex(polygon_to_circle * sx / 2 * std::cos(phi), polygon_to_circle * sy / 2 * std::sin(phi));
+    }
+    for (uint32_t i = 0; i < kSides; ++i) mesh.indices.insert(mesh.indices.end(), {0, 1 + i, 1 + (i + 1) % kSides});
+  }
+  return mesh;
+}
+
+// One mesh of scene['meshes'], validated, with its arrays kept alive for weld_corners.
+struct MeshInput {
+  Float32Array positions, normals, uvs;
+  IndexArray triangles, normal_indices, uv_indices;
+  std::vector<uint32_t> materials;
+  IndexedMeshArrays arrays;
+};
+
+MeshInput mesh_from_python(py::handle v, const std::string& path, size_t num_materials,
+                           const std::function<uint32_t()>& default_material) {
+  const py::dict d = as_dict(v, path);
+  MeshInput in;
+  in.positions = real_array<Float32Array>(required(d, "positions", path, "a (V, 3) float array"),
+                                          key_path(path, "positions"), {-1, 3}, false);
+  require_finite(in.positions.data(), static_cast<size_t>(in.positions.size()), 3, key_path(path, "positions"));
+  const auto nv = static_cast<long long>(in.positions.shape(0));
+  in.triangles = real_array<IndexArray>(required(d, "triangles", path, "a (T, 3) integer array"),
+                                        key_path(path, "triangles"), {-1, 3}, true);
+  require_indices(in.triangles, 0, nv, key_path(path, "triangles"));
+  const py::ssize_t nt = in.triangles.shape(0);
+
+  auto attribute = [&](const char* values_key, const char* index_key, py::ssize_t width, Float32Array& values,
+                       IndexArray& indices) {
+    const bool has_values = has(d, values_key), has_index = has(d, index_key);
+    if (has_values != has_index)
+      refuse(key_path(path, has_values ? index_key : values_key),
+             std::string("is missing while '") + (has_values ? values_key : index_key) +
+                 "' is given; expected both or neither");
+    if (!has_values) return false;
+    values = real_array<Float32Array>(d[values_key], key_path(path, values_key), {-1, width}, false);
+    indices = real_array<IndexArray>(d[index_key], key_path(path, index_key), {nt, 3}, true);
+    require_indices(indices, 0, values.shape(0), key_path(path, index_key));
+    return true;
+  };
+  const bool has_normals = attribute("normals", "normal_indices", 3, in.normals, in.normal_indices);
+  const bool has_uvs = attribute("uvs", "uv_indices", 2, in.uvs, in.uv_indices);
+  if (has_uvs) require_finite(in.uvs.data(), static_cast<size_t>(in.uvs.size()), 2, key_path(path, "uvs"));
+
+  in.materials.assign(static_cast<size_t>(nt), 0);
+  bool needs_default = !has(d, "material_indices");
+  if (!needs_default) {
+    const auto mi = real_array<IndexArray>(d["material_indices"], key_path(path, "material_indices"), {nt}, true);
+    require_indices(mi, -1, static_cast<long long>(num_materials), key_path(path, "material_indices"));
+    for (py::ssize_t t = 0; t < nt; ++t) {
+      if (mi.data()[t] < 0) needs_default = true;
+      else in.materials[t] = static_cast<uint32_t>(mi.data()[t]);
+    }
+    if (needs_default) {
+      const uint32_t fallback = default_material();
+      for (py::ssize_t t = 0; t < nt; ++t)
+        if (mi.data()[t] < 0) in.materials[t] = fallback;
+    }
+  } else {
+    std::fill(in.materials.begin(), in.materials.end(), default_material());
+  }
+
+  in.arrays.positions = in.positions.data();
+  in.arrays.num_positions = static_cast<size_t>(nv);
+  in.arrays.triangles = in.triangles.data();
+  in.arrays.num_triangles = static_cast<size_t>(nt);
+  if (has_normals) {
+    in.arrays.normals = in.normals.data();
+    in.arrays.normal_indices = in.normal_indices.data();
+  }
+  if (has_uvs) {
+    in.arrays.uvs = in.uvs.data();
+    in.arrays.uv_indices = in.uv_indices.data();
+  }
+  in.arrays.material_indices = in.materials.data();
+  return in;
+}
+
+render::CameraSettings camera_from_python(py::handle v, const std::string& path) {
+  const py::dict d = as_dict(v, path);
+  if (d.contains("missing") && py::bool_(d["missing"]))
+    refuse(path, "the scene has no camera; expected a camera dict with 'matrix', 'lens', ...");
+  if (has(d, "type")) {
+    const std::string type = lower(text(d["type"], key_path(path, "type"), "'persp'"));
+    if (type != "persp" && type != "perspective")
+      refuse(key_path(path, "type"), "'" + type + "' is not supported; expected 'persp' (the renderer's camera is perspective)");
+  }
+  render::CameraSettings c;
+  const auto m = matrix4(required(d, "matrix", path, "the camera's 4x4 camera-to-world matrix"), key_path(path, "matrix"), true);
+  for (int i = 0; i < 16; ++i) c.camera_to_world[i] = static_cast<float>(m[i]);
+  if (has(d, "lens")) c.lens_mm = static_cast<float>(number(d["lens"], key_path(path, "lens"), 1e-6, kInf, "(0, inf) mm"));
+  if (has(d, "sensor_width"))
+    c.sensor_width_mm = static_cast<float>(number(d["sensor_width"], key_path(path, "sensor_width"), 1e-6, kInf, "(0, inf) mm"));
+  if (has(d, "sensor_height"))
+    c.sensor_height_mm = static_cast<float>(number(d["sensor_height"], key_path(path, "sensor_height"), 1e-6, kInf, "(0, inf) mm"));
+  if (has(d, "sensor_fit")) {
+    const std::string fit = lower(text(d["sensor_fit"], key_path(path, "sensor_fit"), "'auto', 'horizontal' or 'vertical'"));
+    if (fit == "auto") c.sensor_fit = render::SensorFit::Auto;
+    else if (fit == "horizontal") c.sensor_fit = render::SensorFit::Horizontal;
+    else if (fit == "vertical") c.sensor_fit = render::SensorFit::Vertical;
+    else refuse(key_path(path, "sensor_fit"), "'" + fit + "' is unknown; expected 'auto', 'horizontal' or 'vertical'");
+  }
+  if (has(d, "shift")) {
+    const auto s = numbers(d["shift"], key_path(path, "shift"), 2);
+    c.shift_x = static_cast<float>(s[0]);
+    c.shift_y = static_cast<float>(s[1]);
+  }
+  if (has(d, "clip")) {
+    const auto s = numbers(d["clip"], key_path(path, "clip"), 2);
+    if (!(s[0] >= 0.0 && s[1] > s[0]))
+      refuse(key_path(path, "clip"), "(" + num(s[0]) + ", " + num(s[1]) + ") is not a range; expected (start, end) with 0 <= start < end");
+    c.clip_start = static_cast<float>(s[0]);
+    c.clip_end = static_cast<float>(s[1]);
+  }
+  return c;
+}
+
+}  // namespace
+
+SceneFromPython scene_from_python(const py::handle& scene_obj) {
+  const auto started = std::chrono::steady_clock::now();
+  const std::string root = "scene";
+  const py::dict d = as_dict(scene_obj, root);
+  SceneFromPython out;
+  out.scene = std::make_unique<render::Scene>();
+  render::Scene& scene = *out.scene;
+
+  const auto res = numbers(required(d, "resolution", root, "(width, height) in pixels"), key_path(root, "resolution"), 2);
+  for (double x : res)
+    if (x < 1.0 || x > 65536.0 || x != std::floor(x))
+      refuse(key_path(root, "resolution"), "has " + num(x) + "; expected two integers in [1, 65536]");
+  out.width = static_cast<int>(res[0]);
+  out.height = static_cast<int>(res[1]);
+  out.camera = camera_from_python(required(d, "camera", root, "a camera dict"), key_path(root, "camera"));
+
+  // Materials: scene['materials'][i] is scene material i; -1 gets a default grey Lambertian
+  // (Blender's look for an object without material), added on first use.
+  size_t num_materials = 0;
+  if (has(d, "materials")) {
+    const std::string path = key_path(root, "materials");
+    const py::list materials = as_list(d["materials"], path, "a list of material dicts");
+    for (size_t i = 0; i < materials.size(); ++i) {
+      const std::string p = item_path(path, i);
+      with_path(p, [&] { return scene.add_material(material_from_python(materials[i], p)); });
+    }
+    num_materials = materials.size();
+  }
+  int64_t default_material = -1;
+  auto get_default_material = [&]() -> uint32_t {
+    if (default_material < 0) {
+      py::dict params;
+      params["reflectance"] = 0.8;
+      default_material = scene.add_material(Material{{make_model(py::str("lambertian"), params).bxdf}, RGB(0.0f)});
+    }
+    return static_cast<uint32_t>(default_material);
+  };
+
+  std::vector<MeshInput> meshes;
+  if (has(d, "meshes")) {
+    const std::string path = key_path(root, "meshes");
+    const py::list list = as_list(d["meshes"], path, "a list of mesh dicts");
+    meshes.reserve(list.size());
+    for (size_t i = 0; i < list.size(); ++i)
+      meshes.push_back(mesh_from_python(list[i], item_path(path, i), num_materials, get_default_material));
+  }
+
+  // Instances: without them every mesh is drawn once, its positions taken as world space.
+  std::vector<int64_t> instance_mesh;
+  std::vector<std::array<double, 16>> instance_matrix;
+  const bool has_im = has(d, "instance_mesh"), has_ix = has(d, "instance_matrix");
+  if (has_im != has_ix)
+    refuse(key_path(root, has_im ? "instance_matrix" : "instance_mesh"),
+           std::string("is missing while '") + (has_im ? "instance_mesh" : "instance_matrix") +
+               "' is given; expected both or neither");
+  const bool instanced = has_im;
+  if (instanced) {
+    const auto im = real_array<IndexArray>(d["instance_mesh"], key_path(root, "instance_mesh"), {-1}, true);
+    require_indices(im, 0, static_cast<long long>(meshes.size()), key_path(root, "instance_mesh"));
+    const auto ix = real_array<Float64Array>(d["instance_matrix"], key_path(root, "instance_matrix"),
+                                             {im.shape(0), 4, 4}, false);
+    instance_mesh.assign(im.data(), im.data() + im.size());
+    for (py::ssize_t i = 0; i < im.shape(0); ++i) {
+      const std::string p = item_path(key_path(root, "instance_matrix"), static_cast<size_t>(i));
+      instance_matrix.push_back(checked_matrix(ix.data() + 16 * i, p, true));
+    }
+  }
+
+  if (has(d, "world")) {
+    const std::string path = key_path(root, "world");
+    const py::dict w = as_dict(d["world"], path);
+    if (has(w, "color")) scene.set_world(colour(w["color"], key_path(path, "color")));
+  }
+
+  std::vector<Mesh> light_meshes;
+  if (has(d, "lights")) {
+    const std::string path = key_path(root, "lights");
+    const py::list lights = as_list(d["lights"], path, "a list of light dicts");
+    for (size_t i = 0; i < lights.size(); ++i) {
+      const std::string p = item_path(path, i);
+      const py::dict l = as_dict(lights[i], p);
+      if (l.contains("type") && py::isinstance<py::str>(l["type"]) && lower(l["type"].cast<std::string>()) == "area") {
+        const RGB radiance = colour(required(l, "radiance", p, "an RGB radiance in W/(m^2 sr)"), key_path(p, "radiance"));
+        Mesh mesh = area_light_mesh(l, p, 0);
+        if (radiance.r == 0.0f && radiance.g == 0.0f && radiance.b == 0.0f) continue;  // emits nothing
+        mesh.material = scene.add_material(Material{{}, radiance});
+        light_meshes.push_back(std::move(mesh));
+        out.warnings.push_back("light '" + (has(l, "name") ? py::str(l["name"]).cast<std::string>() : p) +
+                               "': area lights are emissive meshes, which emit from both sides "
+                               "(Blender's emit from the front only)");
+        continue;
+      }
+      scene.add_light(light_from_python(l, p, out.warnings));
+    }
+  }
+
+  // The heavy part (welding, transforming, copying, the BVH) needs no Python.
+  {
+    py::gil_scoped_release release;
+    std::vector<Mesh> welded(meshes.size());
+    for (size_t i = 0; i < meshes.size(); ++i)
+      if (meshes[i].arrays.num_triangles > 0) welded[i] = weld_corners(meshes[i].arrays);
+    auto add = [&](const Mesh& mesh, const std::string& what) {
+      if (mesh.num_triangles() == 0) return;
+      try {
+        scene.add_mesh(mesh.view());
+      } catch (const std::invalid_argument& e) {
+        refuse(what, e.what());
+      }
+    };
+    if (instanced) {
+      for (size_t i = 0; i < instance_mesh.size(); ++i)
+        add(transformed(welded[static_cast<size_t>(instance_mesh[i])], instance_matrix[i]),
+            item_path(key_path(root, "instance_mesh"), i));
+    } else {
+      for (size_t i = 0; i < welded.size(); ++i) add(welded[i], item_path(key_path(root, "meshes"), i));
+    }
+    for (const Mesh& m : light_meshes) add(m, key_path(root, "lights"));
+    const auto converted = std::chrono::steady_clock::now();
+    scene.commit();
+    out.convert_seconds = std::chrono::duration<double>(converted - started).count();
+    out.bvh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - converted).count();
+  }
+  return out;
+}
+
+void apply_render_settings(const py::handle& settings, render::RenderSettings& s) {
+  if (settings.is_none()) return;
+  const std::string root = "settings";
+  const py::dict d = as_dict(settings, root);
+  static const char* const kKnown =
+      "'samples', 'max_bounces', 'pixel_filter', 'filter_width', 'threads', 'seed', 'tile_size', "
+      "'samples_per_pass', 'russian_roulette_depth', 'transparent_background'";
+  for (const auto& item : d) {
+    const std::string key = py::str(item.first).cast<std::string>();
+    const std::string path = root + "['" + key + "']";
+    const py::handle v = item.second;
+    if (key == "samples") s.samples_per_pixel = static_cast<int>(integer(v, path, 1, 1 << 24));
+    else if (key == "max_bounces") s.max_bounces = static_cast<int>(integer(v, path, 0, 1 << 16));
+    else if (key == "russian_roulette_depth") s.russian_roulette_depth = static_cast<int>(integer(v, path, 0, 1 << 16));
+    else if (key == "threads") s.threads = static_cast<int>(integer(v, path, 0, 1 << 16));
+    else if (key == "seed") s.seed = static_cast<uint64_t>(integer(v, path, 0, std::numeric_limits<long long>::max()));
+    else if (key == "tile_size") s.tile_size = static_cast<int>(integer(v, path, 1, 4096));
+    else if (key == "samples_per_pass") s.samples_per_pass = static_cast<int>(integer(v, path, 0, 1 << 24));
+    else if (key == "filter_width") s.filter_width = static_cast<float>(number(v, path, 1e-6, 16.0, "(0, 16] pixels"));
+    else if (key == "transparent_background") {
+      if (!PyBool_Check(v.ptr())) refuse(path, short_repr(v) + " is not a bool; expected True or False");
+      s.transparent_background = v.cast<bool>();
+    } else if (key == "pixel_filter") {
+      const std::string name = lower(text(v, path, "'box', 'gaussian' or 'pixel_center'"));
+      if (name == "box") s.filter = render::FilterType::Box;
+      else if (name == "gaussian") s.filter = render::FilterType::Gaussian;
+      else if (name == "pixel_center" || name == "pixel_centre" || name == "center") s.filter = render::FilterType::PixelCenter;
+      else refuse(path, "'" + name + "' is unknown; expected 'box', 'gaussian' or 'pixel_center'");
+    } else {
+      refuse(path, "is not a setting; expected one of " + std::string(kKnown));
+    }
+  }
+}
+
+}  // namespace bxdf::python
