@@ -1,0 +1,214 @@
+"""The Cycles node tree closest to a BxDF Lab material, and whether it is exact.
+
+`exact` means Cycles 3.4 evaluates the same formula (reference/renderers.md: Lambert, Cycles' own
+Oren–Nayar, GGX/Beckmann with separable Smith and F = 1, sharp glass, Lambertian transmission);
+`approximate` means the best mapping we know, and the mapping text says what was matched.
+"""
+
+import math
+
+import numpy as np
+
+from . import api, dependency
+
+EXACT = "exact"
+APPROXIMATE = "approximate"
+
+
+class Mapping:
+    """What to build: one BSDF node type, its inputs and settings, the label and the reasoning."""
+
+    def __init__(self, node, label, text, inputs=None, settings=None):
+        self.node, self.label, self.text = node, label, text
+        self.inputs = inputs or {}
+        self.settings = settings or {}
+
+
+def _rgba(rgb):
+    return (*[float(c) for c in rgb], 1.0)
+
+
+def _clamp01(rgb):
+    return tuple(min(max(float(c), 0.0), 1.0) for c in rgb)
+
+
+def roughness_anisotropy(alpha_x, alpha_y):
+    """Cycles' (roughness, anisotropy) giving microfacet widths (αx, αy): Cycles sets
+    r = roughness², a ≥ 0 → αx = r(1−a), αy = r/(1−a); a < 0 → αx = r/(1+a), αy = r(1+a)."""
+    r = math.sqrt(alpha_x * alpha_y)
+    a = 1.0 - math.sqrt(alpha_x / alpha_y) if alpha_x <= alpha_y else math.sqrt(alpha_y / alpha_x) - 1.0
+    return math.sqrt(r), a
+
+
+def alpha_from_exponent(n):
+    """Walter et al.'s Blinn–Beckmann correspondence α = √(2/(n+2)) (also Cycles'
+    Ashikhmin–Shirley: n = 2/α² − 2)."""
+    return math.sqrt(2.0 / (float(n) + 2.0))
+
+
+def classic_oren_nayar(reflectance, sigma_deg):
+    """Cycles' improved Oren–Nayar settings closest to the classic one: match the ratio of the
+    s/t term to the constant term (classic B/A = Cycles' σ) and the constant term's colour."""
+    s2 = math.radians(sigma_deg) ** 2
+    a = 1.0 - 0.5 * s2 / (s2 + 0.33)
+    b = 0.45 * s2 / (s2 + 0.09)
+    sigma_c = min(b / a, 1.0)
+    scale = a * (math.pi + (math.pi / 2 - 2.0 / 3.0) * sigma_c) / math.pi
+    color = _clamp01(np.asarray(reflectance) * scale)
+    return sigma_c, color, a, b
+
+
+def _albedo_colour(model):
+    return _clamp01(np.asarray(model.rho_hh(4096)).reshape(3))
+
+
+def _fresnel_colour(params):
+    """Normal-incidence Fresnel reflectance (the colour a Fresnel-less Cycles lobe can carry)."""
+    bxdf = dependency.require()
+    kind = params.get("fresnel", "none")
+    if kind == "conductor":
+        return np.asarray(bxdf.fresnel_conductor(np.array([1.0]), params["eta"], params["k"])).reshape(3)
+    if kind == "dielectric":
+        f0 = float(np.asarray(bxdf.fresnel_dielectric(np.array([1.0]), params["eta_i"],
+                                                       params["eta_t"])).reshape(-1)[0])
+        return np.full(3, f0)
+    return np.ones(3)
+
+
+def _microfacet(params):
+    distribution = params.get("distribution", "ggx")
+    notes, exact = [], True
+    if distribution in ("ggx", "beckmann"):
+        ax, ay = float(params["alpha_x"]), float(params["alpha_y"])
+        cycles_distribution = "GGX" if distribution == "ggx" else "BECKMANN"
+    else:  # blinn, ashikhmin_shirley: exponent(s) → Beckmann-equivalent widths
+        exact = False
+        if distribution == "blinn":
+            ax = ay = alpha_from_exponent(params["exponent"])
+            cycles_distribution = "BECKMANN"
+            notes.append(f"Blinn exponent {params['exponent']:g} → Beckmann α = √(2/(n+2)) = {ax:.4g}")
+        else:
+            ax, ay = alpha_from_exponent(params["exponent_x"]), alpha_from_exponent(params["exponent_y"])
+            cycles_distribution = "ASHIKHMIN_SHIRLEY"
+            notes.append(f"Ashikhmin–Shirley exponents → α = √(2/(n+2)) = ({ax:.4g}, {ay:.4g}); "
+                         "Cycles' node has no Fresnel, diffuse or shadowing term")
+    if max(ax, ay) > 1.0:
+        exact = False
+        notes.append("Cycles clamps α to 1")
+        ax, ay = min(ax, 1.0), min(ay, 1.0)
+    roughness, anisotropy = roughness_anisotropy(ax, ay)
+    if abs(anisotropy) > 0.99:
+        exact = False
+        notes.append(f"anisotropy {anisotropy:.3f} clamped to ±0.99 by Cycles")
+    if params.get("shadowing", "smith") != "smith":
+        exact = False
+        notes.append("V-groove shadowing → Cycles' separable Smith")
+    color = np.asarray(params.get("reflectance", (1, 1, 1)), dtype=float)
+    if params.get("fresnel", "none") != "none":
+        exact = False
+        f0 = _fresnel_colour(params)
+        color = color * f0
+        notes.append(f"{params['fresnel']} Fresnel → constant colour F(0°) = "
+                     f"({f0[0]:.3f}, {f0[1]:.3f}, {f0[2]:.3f}); Cycles' Glossy has F = 1")
+    if distribution == "beckmann" and ax != ay:
+        notes.append("Cycles 3.4 samples anisotropic Beckmann with (αx, αx): indirect light is biased")
+    isotropic = ax == ay
+    text = (f"{distribution} αx={ax:.4g} αy={ay:.4g} → roughness = (αx·αy)^¼ = {roughness:.4g}"
+            + ("" if isotropic else f", anisotropy = {anisotropy:.4g}"))
+    inputs = {"Color": _rgba(_clamp01(color)), "Roughness": roughness}
+    if not isotropic or cycles_distribution == "ASHIKHMIN_SHIRLEY":
+        inputs["Anisotropy"] = anisotropy
+        node = "ShaderNodeBsdfAnisotropic"
+    else:
+        node = "ShaderNodeBsdfGlossy"
+    return Mapping(node, EXACT if exact else APPROXIMATE, "; ".join([text] + notes), inputs,
+                   {"distribution": cycles_distribution})
+
+
+def mapping_for(name, params, model):
+    """The Mapping for model `name` with validated `params` (`model` is the bxdf object)."""
+    if name == "lambertian":
+        return Mapping("ShaderNodeBsdfDiffuse", EXACT, "Lambert: Diffuse BSDF, roughness 0",
+                       {"Color": _rgba(params["reflectance"]), "Roughness": 0.0})
+    if name == "lambertian_transmission":
+        return Mapping("ShaderNodeBsdfTranslucent", EXACT, "Lambertian transmission: Translucent BSDF",
+                       {"Color": _rgba(params["transmittance"])})
+    if name == "cycles_oren_nayar":
+        roughness = float(params.get("roughness", params.get("sigma", 0.0)))
+        return Mapping("ShaderNodeBsdfDiffuse", EXACT, f"Cycles' Oren–Nayar, roughness {roughness:g}",
+                       {"Color": _rgba(params["reflectance"]), "Roughness": roughness})
+    if name == "oren_nayar":
+        sigma_c, color, a, b = classic_oren_nayar(params["reflectance"], params["sigma"])
+        return Mapping("ShaderNodeBsdfDiffuse", APPROXIMATE,
+                       f"classic Oren–Nayar σ={params['sigma']:g}° (A={a:.4g}, B={b:.4g}) → Cycles' "
+                       f"improved Oren–Nayar roughness B/A = {sigma_c:.4g}, colour scaled to match A; "
+                       "differs where cos(φi−φo) < 0", {"Color": _rgba(color), "Roughness": sigma_c})
+    if name in ("microfacet", "cycles_glossy"):
+        mapping = _microfacet(params) if "alpha_x" in params or "exponent" in params else None
+        if name == "cycles_glossy" and "roughness" in params:
+            inputs = {"Color": _rgba(params.get("reflectance", (1, 1, 1))),
+                      "Roughness": float(params["roughness"])}
+            node = "ShaderNodeBsdfGlossy"
+            if "anisotropy" in params:
+                inputs["Anisotropy"] = float(params["anisotropy"])
+                node = "ShaderNodeBsdfAnisotropic"
+            mapping = Mapping(node, EXACT, "Cycles' own glossy formula", inputs,
+                              {"distribution": str(params.get("distribution", "ggx")).upper()})
+        if mapping is not None:
+            return mapping
+    if name == "specular_reflection":
+        fresnel = _fresnel_colour(params)
+        exact = params.get("fresnel", "none") == "none"
+        return Mapping("ShaderNodeBsdfGlossy", EXACT if exact else APPROXIMATE,
+                       "mirror: Glossy BSDF, sharp" + ("" if exact else
+                                                       f"; {params['fresnel']} Fresnel → F(0°) colour"),
+                       {"Color": _rgba(_clamp01(np.asarray(params["reflectance"]) * fresnel)),
+                        "Roughness": 0.0}, {"distribution": "SHARP"})
+    if name == "fresnel_specular":
+        ior = float(params["eta_t"]) / float(params["eta_i"])
+        same = tuple(params["reflectance"]) == tuple(params["transmittance"])
+        return Mapping("ShaderNodeBsdfGlass", EXACT if same else APPROXIMATE,
+                       f"glass: Glass BSDF, sharp, IOR = ηt/ηi = {ior:.4g}" +
+                       ("" if same else "; one colour for reflection and refraction (transmittance)"),
+                       {"Color": _rgba(params["transmittance"]), "Roughness": 0.0, "IOR": ior},
+                       {"distribution": "SHARP"})
+    if name in ("specular_transmission", "microfacet_transmission"):
+        ior = float(params["eta_t"]) / float(params["eta_i"])
+        alpha = math.sqrt(float(params.get("alpha_x", 0.0)) * float(params.get("alpha_y", 0.0)))
+        return Mapping("ShaderNodeBsdfRefraction", APPROXIMATE,
+                       f"Refraction BSDF IOR {ior:.4g}, roughness √α = {math.sqrt(alpha):.4g}; "
+                       "Cycles' Refraction BSDF has no Fresnel factor",
+                       {"Color": _rgba(params["transmittance"]), "Roughness": math.sqrt(alpha),
+                        "IOR": ior},
+                       {"distribution": str(params.get("distribution", "sharp")).upper()
+                        if alpha > 0 else "SHARP"})
+    # Anything else (Lafortune fits, measured data, future models): Principled with the model's
+    # hemispherical albedo as base colour.
+    albedo = _albedo_colour(model)
+    return Mapping("ShaderNodeBsdfPrincipled", APPROXIMATE,
+                   f"{name}: no Cycles closure; Principled BSDF, base colour = hemispherical albedo "
+                   f"({albedo[0]:.3f}, {albedo[1]:.3f}, {albedo[2]:.3f}), specular 0",
+                   {"Base Color": _rgba(albedo), "Specular": 0.0, "Roughness": 1.0})
+
+
+def set_up(material):
+    """Replaces `material`'s node tree with the closest Cycles BSDF; stores and returns
+    (label, mapping text). ValueError if the material's parameters are invalid."""
+    model = api.make(material)
+    name, params = api.describe(material)
+    mapping = mapping_for(name, dict(model.params), model)
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    output = nodes.new("ShaderNodeOutputMaterial")
+    output.location = (300, 0)
+    bsdf = nodes.new(mapping.node)
+    bsdf.label = f"BxDF Lab {name} ({mapping.label})"
+    for key, value in mapping.settings.items():
+        setattr(bsdf, key, value)
+    for key, value in mapping.inputs.items():
+        bsdf.inputs[key].default_value = value
+    material.node_tree.links.new(bsdf.outputs[0], output.inputs["Surface"])
+    material.bxdf_lab.cycles_label = mapping.label
+    material.bxdf_lab.cycles_mapping = mapping.text
+    return mapping.label, mapping.text

@@ -1,0 +1,243 @@
+"""Blender scene → plain data for the renderer: a dict of numpy arrays and small dicts.
+
+Everything leaves Blender through `foreach_get` into numpy arrays of the matching dtype (never raw
+pointers: Blender's mesh layout changes between versions). The result has no bpy objects in it,
+so it can be tested, pickled, or handed to the renderer's binding unchanged.
+
+    {
+      "meshes": [{"name": str,
+                  "positions": (V, 3) float32, object space,
+                  "triangles": (T, 3) int32 indices into positions,
+                  "normals": (T, 3, 3) float32, shading normal per triangle corner (smooth,
+                             flat or custom split normals, as Blender shades them),
+                  "uvs": (T, 3, 2) float32 per corner, or None without a UV map,
+                  "material_indices": (T,) int32 into "materials", -1 = no material}],
+      "instance_mesh": (I,) int32 into "meshes", "instance_matrix": (I, 4, 4) float32 object→world,
+      "materials": [{"name", "model", "params"}],    # bxdf.make(model, **params)
+      "lights": [{"type", "name", "matrix", "position", "direction", "color", "power", ...}],
+      "camera": {...}, "world": {"color": (3,) float32}, "resolution": (width, height),
+      "warnings": [str],  # things exported approximately (e.g. a textured world)
+    }
+
+Light units follow Blender: a point or spot light of power P watts has radiant intensity
+I = P·color/(4π) W/sr (Cycles' convention, reference/renderers.md); a sun gives irradiance
+`strength` W/m²; an area light of power P emits radiance P·color/(π·area) from one side.
+"""
+
+import math
+
+import numpy as np
+
+from . import api
+
+GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
+
+
+def _matrix(m):
+    return np.array(m, dtype=np.float32).reshape(4, 4)
+
+
+def mesh_arrays(mesh):
+    """Arrays of one evaluated Blender mesh (see the module docstring for the layout)."""
+    mesh.calc_loop_triangles()
+    n_vertices = len(mesh.vertices)
+    n_triangles = len(mesh.loop_triangles)
+    positions = np.empty(n_vertices * 3, dtype=np.float32)
+    mesh.vertices.foreach_get("co", positions)
+    triangles = np.empty(n_triangles * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("vertices", triangles)
+    corner_loops = np.empty(n_triangles * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("loops", corner_loops)
+    material_indices = np.empty(n_triangles, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("material_index", material_indices)
+
+    # Split normals honour smooth/flat faces, auto smooth and custom normals alike.
+    mesh.calc_normals_split()
+    loop_normals = np.empty(len(mesh.loops) * 3, dtype=np.float32)
+    mesh.loops.foreach_get("normal", loop_normals)
+    normals = loop_normals.reshape(-1, 3)[corner_loops].reshape(n_triangles, 3, 3)
+
+    uvs = None
+    uv_layer = mesh.uv_layers.active
+    if uv_layer is not None:
+        loop_uvs = np.empty(len(mesh.loops) * 2, dtype=np.float32)
+        uv_layer.data.foreach_get("uv", loop_uvs)
+        uvs = loop_uvs.reshape(-1, 2)[corner_loops].reshape(n_triangles, 3, 2)
+
+    return {
+        "positions": positions.reshape(n_vertices, 3),
+        "triangles": triangles.reshape(n_triangles, 3),
+        "normals": normals,
+        "uvs": uvs,
+        "material_indices": material_indices,
+    }
+
+
+class _MaterialTable:
+    """Materials in first-use order; each is validated once through the registry."""
+
+    def __init__(self):
+        self.index = {}
+        self.entries = []
+
+    def get(self, material):
+        if material is None:
+            return -1
+        material = material.original
+        if material.name not in self.index:
+            model = api.make(material)  # ValueError naming the material on a bad value
+            self.index[material.name] = len(self.entries)
+            name, params = api.describe(material)
+            self.entries.append({"name": material.name, "model": name, "params": params,
+                                 "flags": set(getattr(model, "flags", ()))})
+        return self.index[material.name]
+
+
+def _object_mesh(obj, materials):
+    """The mesh dict of an evaluated object, with material slots mapped to the scene table."""
+    mesh = obj.to_mesh()
+    try:
+        if mesh is None:
+            return None
+        data = mesh_arrays(mesh)
+    finally:
+        obj.to_mesh_clear()
+    slots = [materials.get(slot.material) for slot in obj.material_slots]
+    if slots:
+        table = np.asarray(slots, dtype=np.int32)
+        data["material_indices"] = table[np.clip(data["material_indices"], 0, len(slots) - 1)]
+    else:
+        data["material_indices"] = np.full_like(data["material_indices"], -1)
+    data["name"] = obj.name
+    return data
+
+
+def light_dict(obj, matrix):
+    """One light in Blender's units, plus the derived radiometric quantity the renderer uses."""
+    light = obj.data
+    m = _matrix(matrix)
+    color = np.array(light.color, dtype=np.float32)
+    out = {
+        "type": light.type.lower(),  # point, spot, sun, area
+        "name": obj.name,
+        "matrix": m,
+        "position": m[:3, 3].copy(),
+        "direction": -m[:3, 2] / max(np.linalg.norm(m[:3, 2]), 1e-30),  # lights shine along -Z
+        "color": color,
+        "power": float(light.energy),  # W (sun: W/m²)
+    }
+    if light.type in ("POINT", "SPOT"):
+        out["radius"] = float(light.shadow_soft_size)
+        out["intensity"] = color * float(light.energy) / (4.0 * math.pi)  # W/sr
+    if light.type == "SPOT":
+        out["spot_size"] = float(light.spot_size)  # full cone angle, radians
+        out["spot_blend"] = float(light.spot_blend)
+    if light.type == "SUN":
+        out["angle"] = float(light.angle)
+        out["irradiance"] = color * float(light.energy)  # W/m²
+    if light.type == "AREA":
+        size_x = float(light.size)
+        size_y = float(light.size_y) if light.shape in ("RECTANGLE", "ELLIPSE") else size_x
+        area = size_x * size_y * (math.pi / 4 if light.shape in ("DISK", "ELLIPSE") else 1.0)
+        scale = np.linalg.norm(m[:3, 0]) * np.linalg.norm(m[:3, 1])
+        out.update(shape=light.shape.lower(), size=(size_x, size_y), area=area * scale,
+                   radiance=color * float(light.energy) / (math.pi * max(area * scale, 1e-30)))
+    return out
+
+
+def resolution(scene):
+    r = scene.render
+    return (int(r.resolution_x * r.resolution_percentage / 100),
+            int(r.resolution_y * r.resolution_percentage / 100))
+
+
+def camera_dict(scene, camera_obj):
+    """Blender's camera model: lens and sensor (with fit), shift, clip, resolution, aspect."""
+    width, height = resolution(scene)
+    r = scene.render
+    out = {"resolution": (width, height),
+           "pixel_aspect": float(r.pixel_aspect_y / r.pixel_aspect_x)}
+    if camera_obj is None:
+        out["missing"] = True
+        return out
+    cam = camera_obj.data
+    matrix = _matrix(camera_obj.matrix_world)
+    # Blender ignores scale for the view; the renderer wants an orthonormal frame.
+    for axis in range(3):
+        matrix[:3, axis] /= max(np.linalg.norm(matrix[:3, axis]), 1e-30)
+    out.update({
+        "name": camera_obj.name,
+        "matrix": matrix,  # camera looks along -Z, +Y up
+        "type": cam.type.lower(),
+        "lens": float(cam.lens),  # mm
+        "sensor_width": float(cam.sensor_width),
+        "sensor_height": float(cam.sensor_height),
+        "sensor_fit": cam.sensor_fit.lower(),  # auto, horizontal, vertical
+        "shift": (float(cam.shift_x), float(cam.shift_y)),
+        "clip": (float(cam.clip_start), float(cam.clip_end)),
+        "ortho_scale": float(cam.ortho_scale),
+    })
+    return out
+
+
+def world_dict(world, warnings):
+    """The world as a constant colour (the renderer's world model)."""
+    if world is None:
+        return {"color": np.zeros(3, dtype=np.float32)}
+    if world.use_nodes and world.node_tree is not None:
+        output = next((n for n in world.node_tree.nodes
+                       if n.type == "OUTPUT_WORLD" and n.is_active_output), None)
+        link = output.inputs["Surface"].links[0] if output and output.inputs["Surface"].links else None
+        background = link.from_node if link else None
+        if background is None:
+            return {"color": np.zeros(3, dtype=np.float32)}
+        if background.type != "BACKGROUND" or background.inputs["Color"].is_linked:
+            warnings.append(f"world '{world.name}': only a constant Background colour is exported; "
+                            "its node set-up was replaced by the world colour")
+            return {"color": np.array(world.color, dtype=np.float32)}
+        color = np.array(background.inputs["Color"].default_value[:3], dtype=np.float32)
+        return {"color": color * float(background.inputs["Strength"].default_value)}
+    return {"color": np.array(world.color, dtype=np.float32)}
+
+
+def export_scene(depsgraph):
+    """The evaluated scene as plain data (see the module docstring). ValueError names a material
+    whose stored parameters the registry refuses."""
+    scene = depsgraph.scene_eval
+    materials = _MaterialTable()
+    warnings = []
+    meshes, mesh_index = [], {}
+    instance_mesh, instance_matrix, lights = [], [], []
+    for inst in depsgraph.object_instances:
+        obj = inst.object
+        if not inst.is_instance and not inst.show_self:
+            continue
+        if obj.type == "LIGHT":
+            lights.append(light_dict(obj, inst.matrix_world))
+            continue
+        if obj.type not in GEOMETRY_TYPES:
+            continue
+        key = (obj.name, obj.data.name if obj.data else "")
+        if key not in mesh_index:
+            data = _object_mesh(obj, materials)
+            if data is None or len(data["triangles"]) == 0:
+                mesh_index[key] = -1
+            else:
+                mesh_index[key] = len(meshes)
+                meshes.append(data)
+        if mesh_index[key] >= 0:
+            instance_mesh.append(mesh_index[key])
+            instance_matrix.append(_matrix(inst.matrix_world))
+
+    return {
+        "meshes": meshes,
+        "instance_mesh": np.asarray(instance_mesh, dtype=np.int32),
+        "instance_matrix": (np.stack(instance_matrix) if instance_matrix
+                            else np.zeros((0, 4, 4), dtype=np.float32)),
+        "materials": materials.entries,
+        "lights": lights,
+        "camera": camera_dict(scene, scene.camera.evaluated_get(depsgraph) if scene.camera else None),
+        "world": world_dict(scene.world, warnings),
+        "resolution": resolution(scene),
+        "warnings": warnings,
+    }

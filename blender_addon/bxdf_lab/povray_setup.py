@@ -1,0 +1,161 @@
+"""POV-Ray 3.7 (Blender's render_povray add-on) settings closest to a BxDF Lab material.
+
+POV's finish model (reference/renderers.md): per light, diffuse = D·pigment·(n·l) with no 1/π,
+Blinn specular = S·(n·h)^(1/roughness) with no n·l, normalisation or Fresnel; ambient defaults to
+0.1 and radiosity is on. render_povray exports a material from `diffuse_color` and
+`material.pov.*` only when `use_nodes` is False, and writes every light as `color srgb <color>`
+ignoring its energy, with fade_distance = √(distance/2) and fade_power 2 for inverse-square falloff.
+
+Lights are calibrated so that all three engines see the same light: POV's attenuation
+2/(1 + (d/D)²) ≈ 2D²/d² for a small fade distance D, so a Lambertian (f = R/π, POV diffuse 1)
+matches when colour C satisfies C·2D² = I/π, with I = P·colour/(4π) the Blender point light's
+intensity. We set the light's colour to C (sRGB-encoded, as render_povray writes it) and its
+energy so that P·colour, what Cycles and BxDF Lab use, is unchanged, and pick D so that C
+survives the add-on's 3-digit formatting exactly. A sun gives irradiance P·colour, so C = P·colour/π.
+"""
+
+import math
+
+import numpy as np
+
+from . import api
+from .cycles_setup import APPROXIMATE, EXACT, alpha_from_exponent, classic_oren_nayar
+
+FADE_DISTANCE = 0.01  # m: POV's 2/(1 + (d/D)²) is inverse-square within (D/d)² ≈ 1e-5 at d = 3 m
+
+
+def srgb_encode(c):
+    c = max(float(c), 0.0)
+    return 12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055
+
+
+def srgb_decode(s):
+    return s / 12.92 if s <= 0.04045 else ((s + 0.055) / 1.055) ** 2.4
+
+
+def _as_written(c):
+    """The linear value POV reads back from render_povray's "%.3g" sRGB formatting."""
+    return srgb_decode(float(f"{srgb_encode(c):.3g}"))
+
+
+def calibrate_light(light):
+    """Sets `light` (Blender data) so POV-Ray's render of it matches Cycles' and BxDF Lab's.
+    Returns a one-line description, or None for light types POV cannot match (area lights)."""
+    # What Cycles and BxDF Lab use (energy·colour); kept unchanged below.
+    emitted = float(light.energy) * np.array(light.color, dtype=float)
+    peak = float(emitted.max())
+    if peak <= 0.0:
+        return None
+    if light.type in ("POINT", "SPOT"):
+        target = emitted / (4.0 * math.pi) / (math.pi * 2.0 * FADE_DISTANCE ** 2)
+    elif light.type == "SUN":
+        target = emitted / math.pi
+    else:
+        return None
+    channel = int(np.argmax(target))
+    # render_povray writes `color srgb <light.color>` with "%.3g": POV decodes what is written.
+    encoded = [float(f"{srgb_encode(c):.3g}") for c in target]
+    read_back = srgb_decode(encoded[channel])
+    if light.type in ("POINT", "SPOT"):
+        # Choose D so that the colour POV actually reads gives C·2D² = I/π for the peak channel.
+        d = math.sqrt(emitted[channel] / (4.0 * math.pi) / (math.pi * 2.0 * read_back))
+        d = round(d, 6)  # render_povray writes fade_distance with "%.6f"
+        light.use_custom_distance = False
+        light.falloff_type = "INVERSE_SQUARE"
+        light.distance = 2.0 * d * d
+        text = f"{light.type.lower()}: POV colour {read_back:.4g}, fade distance {d:g}"
+    else:
+        text = f"sun: POV colour {read_back:.4g} = irradiance/π"
+    # Cycles and BxDF Lab use energy·colour linearly: keep it for the peak channel (all channels
+    # for a grey light; a coloured light's hue shifts slightly since sRGB encoding is nonlinear).
+    light.color = encoded
+    light.energy = float(emitted[channel] / encoded[channel])
+    if len(set(encoded)) > 1:
+        text += " (coloured light: approximate)"
+    return text
+
+
+def _finish_for(name, params, model):
+    """(pigment RGB, diffuse, specular dict or None, mirror RGB or None, label, text)."""
+    if name == "lambertian":
+        return params["reflectance"], 1.0, None, None, EXACT, "Lambert: diffuse 1, brilliance 1"
+    if name == "oren_nayar":
+        _, _, a, _ = classic_oren_nayar(params["reflectance"], params["sigma"])
+        return (tuple(a * c for c in params["reflectance"]), 1.0, None, None, APPROXIMATE,
+                f"Oren–Nayar → Lambert with its constant term A = {a:.4g} (POV has no Oren–Nayar)")
+    if name == "specular_reflection":
+        return ((0, 0, 0), 0.0, None, params["reflectance"], APPROXIMATE,
+                "mirror → POV reflection with the reflectance colour (no Fresnel)")
+    distribution = params.get("distribution")
+    if name in ("microfacet", "cycles_glossy") and distribution:
+        if "exponent" in params and distribution == "blinn":
+            exponent = float(params["exponent"])
+        elif "alpha_x" in params:
+            alpha = math.sqrt(float(params["alpha_x"]) * float(params["alpha_y"]))
+            exponent = 2.0 / (alpha * alpha) - 2.0
+        elif "exponent_x" in params:
+            exponent = math.sqrt(float(params["exponent_x"]) * float(params["exponent_y"]))
+        else:
+            exponent = 2.0 / max(float(params.get("roughness", 0.5)) ** 4, 1e-8) - 2.0
+        reflectance = np.asarray(params.get("reflectance", (1, 1, 1)), dtype=float)
+        # Blinn lobe at normal view: f·cosθi·E ≈ R(n+2)/(8π)·(n·h)^n·I/d² and POV gives
+        # S·(n·h)^e·C·2D²/d² = S·(n·h)^e·I/(π d²): S = R(n+2)/8, e = n.
+        strength = float(reflectance.max()) * (exponent + 2.0) / 8.0
+        return (tuple(reflectance), 0.0, {"exponent": exponent, "strength": strength}, None,
+                APPROXIMATE,
+                f"{distribution} → POV Blinn highlight exponent {exponent:.4g} (α = "
+                f"{alpha_from_exponent(exponent):.4g}), strength R(n+2)/8 = {strength:.4g} "
+                "clamped to POV's range; no Fresnel, shadowing or 1/cosθo")
+    albedo = tuple(float(c) for c in np.asarray(model.rho_hh(4096)).reshape(3))
+    return (albedo, 1.0, None, None, APPROXIMATE,
+            f"{name} → Lambert with the hemispherical albedo ({albedo[0]:.3f}, {albedo[1]:.3f}, "
+            f"{albedo[2]:.3f})")
+
+
+def hardness_for_exponent(exponent):
+    """render_povray writes roughness = 0.1·(1 − (h − 1)/510) + 1/511 for hardness h; POV's
+    Blinn exponent is 1/roughness, so POV can show exponents ≈ 9.8 … 511 only."""
+    roughness = 1.0 / max(exponent, 1e-6)
+    h = 1.0 + 510.0 * (1.0 - (roughness - 1.0 / 511.0) / 0.1)
+    return int(round(min(max(h, 1.0), 511.0)))
+
+
+def set_up(material, scene=None):
+    """Sets `material` (use_nodes off, material.pov.*) and, given `scene`, its lights and
+    radiosity for a fair POV-Ray render. Stores and returns (label, mapping text)."""
+    model = api.make(material)
+    name, _ = api.describe(material)
+    pigment, diffuse, specular, mirror, label, text = _finish_for(name, dict(model.params), model)
+    pov = material.pov
+    material.use_nodes = False
+    material.diffuse_color = (*[min(max(float(c), 0.0), 1.0) for c in pigment], 1.0)
+    pov.ambient = 0.0
+    pov.emit = 0.0
+    pov.diffuse_shader = "LAMBERT"
+    pov.diffuse_intensity = diffuse
+    pov.translucency = 0.0
+    pov.conserve_energy = False
+    pov.specular_color = (1.0, 1.0, 1.0)  # grey highlight: no "metallic" tint
+    if specular:
+        pov.specular_shader = "BLINN"
+        pov.specular_hardness = hardness_for_exponent(specular["exponent"])
+        # render_povray writes specular = intensity·ior/4; intensity ≤ 1 and ior ≤ 10.
+        pov.specular_ior = 4.0 if specular["strength"] <= 1.0 else min(4.0 * specular["strength"], 10.0)
+        pov.specular_intensity = min(specular["strength"] * 4.0 / pov.specular_ior, 1.0)
+    else:
+        pov.specular_shader = "BLINN"
+        pov.specular_intensity = 0.0
+    material.pov_raytrace_mirror.use = mirror is not None
+    if mirror is not None:
+        material.pov_raytrace_mirror.reflect_factor = 1.0
+        pov.mirror_color = tuple(float(c) for c in mirror)
+    notes = [text]
+    if scene is not None:
+        scene.pov.radio_enable = False
+        for obj in scene.objects:
+            if obj.type == "LIGHT":
+                done = calibrate_light(obj.data)
+                notes.append(f"light '{obj.name}': " + (done or "not calibrated (area light)"))
+    material.bxdf_lab.pov_label = label
+    material.bxdf_lab.pov_mapping = "; ".join(notes)
+    return label, material.bxdf_lab.pov_mapping

@@ -1,0 +1,36 @@
+"""The one place that calls the renderer's Python binding (plugin/ through `bxdf`).
+
+The engine hands over the exported scene (export.export_scene) and the render settings and gets
+back a linear RGBA float32 image; progress and cancel go through `on_progress(done, total, image)`
+returning False to stop.
+"""
+
+from . import dependency
+
+
+class RendererUnavailable(RuntimeError):
+    pass
+
+
+def binding():
+    """The renderer entry point of the `bxdf` module, or RendererUnavailable saying so."""
+    bxdf = dependency.require()
+    render = getattr(bxdf, "render", None)
+    if render is None:
+        raise RendererUnavailable(
+            "this build of the 'bxdf' module has no renderer (bxdf.render is missing): rebuild "
+            "BxDF Lab with the Embree renderer (plugin/) and run 'make install-addon'")
+    return render
+
+
+def settings_dict(render_settings):
+    s = render_settings
+    return {"samples": s.samples, "max_bounces": s.max_bounces,
+            "pixel_filter": s.pixel_filter.lower(), "filter_width": s.filter_width,
+            "threads": s.threads, "seed": s.seed}
+
+
+def render(scene_data, render_settings, on_progress):
+    """Renders `scene_data`; returns a (height, width, 4) float32 image, rows bottom-up."""
+    render_fn = binding()
+    return render_fn(scene_data, settings_dict(render_settings), on_progress)
