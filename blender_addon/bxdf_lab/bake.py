@@ -59,7 +59,9 @@ def to_image(name, pixels, save_path=""):
         image = None
     if image is None:
         image = bpy.data.images.new(name, width, height, alpha=True, float_buffer=True)
-    image.colorspace_settings.name = "Linear"
+    # Non-Color: the values are data, and Blender 3.4 writes a generated "Linear" float image to
+    # EXR sRGB-encoded (checked: 0.0075 came back as 0.082); Non-Color round-trips exactly.
+    image.colorspace_settings.name = "Non-Color"
     image.pixels.foreach_set(np.ascontiguousarray(pixels, dtype=np.float32).ravel())
     image.update()
     if save_path:

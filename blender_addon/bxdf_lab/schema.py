@@ -32,8 +32,8 @@ class Param:
             return "{" + ", ".join(self.choices) + "}"
         if self.kind not in ("float", "rgb"):
             return ""
-        lo = "(" if self.min_exclusive else "["
-        hi = ")" if self.max_exclusive else "]"
+        lo = "(" if self.min_exclusive or math.isinf(self.min) else "["
+        hi = ")" if self.max_exclusive or math.isinf(self.max) else "]"
         text = f"{lo}{_num(self.min)}, {_num(self.max)}{hi}"
         return f"{text} {self.unit}" if self.unit else text
 
@@ -42,7 +42,7 @@ class Param:
         if self.range_text():
             parts.append(self.range_text())
         if self.when_param:
-            parts.append(f"used when {self.when_param} is {' or '.join(self.when_values)}")
+            parts.append(f"Used when {self.when_param} is {' or '.join(self.when_values)}")
         return ". ".join(parts)
 
     def relevant(self, values):
