@@ -5,7 +5,7 @@ JOBS   ?= $(shell nproc)
 PYTHON := /usr/bin/python3
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps configure build test test-cpp test-python test-blender report bench clean
+.PHONY: all deps configure build test test-cpp test-python test-blender report bench clean install-addon
 
 all: build
 
@@ -28,6 +28,9 @@ test-python: build
 report: build
 	@$(BUILD)/core/bxdf-rho-table
 	@BXDF_PYTHONPATH=$(CURDIR)/$(BUILD)/python $(PYTHON) -m compare run
+
+install-addon: build
+	@bash tools/install-addon.sh $(BUILD)
 
 bench: build
 	@bash tools/run-bench.sh $(BUILD)

@@ -47,8 +47,10 @@ def _engine_settings(scene, engine_id):
                   (c, "samples", scene.bxdf_lab_render.samples),
                   (c, "max_bounces", scene.bxdf_lab_render.max_bounces)]
     if engine_id == "POVRAY_RENDER":
+        # 16-bit sRGB PNG: render_povray loads POV's PNG as sRGB into the linear render result
+        # (a linear PNG, File_Gamma=1.0, would be decoded twice).
         pairs += [(scene.pov, "radio_enable", False),
-                  (scene.pov, "command_line_switches", "+FN16 File_Gamma=1.0")]
+                  (scene.pov, "command_line_switches", "+FN16")]
     use_nodes = engine_id == "CYCLES"
     pairs += [(m, "use_nodes", use_nodes) for m in bpy.data.materials
               if engine_id != "BXDF_LAB" and (m.node_tree is not None or not use_nodes)]

@@ -1,8 +1,8 @@
 """The render engine BXDF_LAB ("BxDF Lab"): export, render with progress and cancel, pixels back.
 
 Blender swallows exceptions raised in render() (bpy.ops.render.render() still says FINISHED), so
-every error is reported with self.report({'ERROR'}, ...) and recorded in `last_error` for scripts
-and tests; end_result() is always called, in a finally (a missing end_result followed by an EXR
+every error is reported with self.report({'ERROR'}, ...) (which the operator's caller sees as a
+RuntimeError) and recorded in `last_error` for scripts and tests; end_result() is always called, in a finally (a missing end_result followed by an EXR
 write crashed Blender 3.4).
 """
 

@@ -22,5 +22,7 @@ if os.environ.get("BXDF_BUILD"):
 sys.path.insert(0, os.path.join(ROOT, "blender_addon"))
 
 args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+if not any(os.path.exists(a.split("::")[0]) for a in args if not a.startswith("-")):
+    args.append(HERE)  # no test paths given: the whole suite
 # -p no:cacheprovider: the source tree stays clean; the add-on is enabled by conftest.py.
-sys.exit(pytest.main(["-p", "no:cacheprovider", "-q", HERE] + args))
+sys.exit(pytest.main(["-p", "no:cacheprovider", "-q"] + args))

@@ -1,0 +1,104 @@
+""""Set Up Cycles Material": the node tree closest to the model, labelled exact or approximate; an
+exact set-up renders in Cycles to what the bxdf model predicts."""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+
+from bxdf_lab import api
+
+SUN_THETA = 40.0  # degrees from the normal
+SUN_IRRADIANCE = math.pi
+
+
+def _set_up(material):
+    with bpy.context.temp_override(material=material):
+        assert bpy.ops.bxdf_lab.set_up_cycles() == {"FINISHED"}
+
+
+def _render_plane(material, path):
+    """A large plane lit by a sun at SUN_THETA, seen straight down by an orthographic camera:
+    every pixel is f(ωo = n, ωi)·E·cos θi (direct light only, no noise from a delta light)."""
+    scene = bpy.context.scene
+    mesh = bpy.data.meshes.new("plane")
+    mesh.from_pydata([(-10, -10, 0), (10, -10, 0), (10, 10, 0), (-10, 10, 0)], [], [(0, 1, 2, 3)])
+    mesh.materials.append(material)
+    scene.collection.objects.link(bpy.data.objects.new("plane", mesh))
+    sun = bpy.data.lights.new("sun", "SUN")
+    sun.energy, sun.angle = SUN_IRRADIANCE, 0.0
+    sun_obj = bpy.data.objects.new("sun", sun)
+    sun_obj.rotation_euler = (math.radians(SUN_THETA), 0, 0)
+    scene.collection.objects.link(sun_obj)
+    cam = bpy.data.cameras.new("cam")
+    cam.type, cam.ortho_scale = "ORTHO", 2.0
+    cam_obj = bpy.data.objects.new("cam", cam)
+    cam_obj.location = (0, 0, 5)
+    scene.collection.objects.link(cam_obj)
+    scene.camera = cam_obj
+    r = scene.render
+    r.engine = "CYCLES"
+    r.resolution_x = r.resolution_y = 8
+    r.resolution_percentage = 100
+    r.filepath = path
+    r.image_settings.file_format, r.image_settings.color_depth = "OPEN_EXR", "32"
+    c = scene.cycles
+    c.samples, c.max_bounces, c.use_denoising, c.use_adaptive_sampling = 4, 0, False, False
+    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
+    bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(path)
+    pixels = np.empty(8 * 8 * 4, dtype=np.float32)
+    image.pixels.foreach_get(pixels)
+    return pixels.reshape(-1, 4)[:, :3]
+
+
+def _predicted(bxdf_model):
+    t = math.radians(SUN_THETA)
+    wi = np.array([0.0, -math.sin(t), math.cos(t)])  # towards the sun
+    return np.asarray(bxdf_model.f([0.0, 0.0, 1.0], wi))[0] * SUN_IRRADIANCE * math.cos(t)
+
+
+def test_lambertian_becomes_an_exact_diffuse_bsdf(material):
+    api.assign(material, "lambertian", reflectance=(0.2, 0.4, 0.6))
+    _set_up(material)
+    assert material.bxdf_lab.cycles_label == "exact"
+    assert "Diffuse" in material.bxdf_lab.cycles_mapping
+    bsdf = material.node_tree.nodes["Diffuse BSDF"]
+    assert tuple(bsdf.inputs["Color"].default_value) == pytest.approx((0.2, 0.4, 0.6, 1.0))
+    assert bsdf.inputs["Roughness"].default_value == 0.0
+    output = material.node_tree.nodes["Material Output"]
+    assert output.inputs["Surface"].links[0].from_node == bsdf
+
+
+@pytest.mark.parametrize("model_name", ["lambertian", "cycles_oren_nayar"])
+def test_exact_set_up_renders_in_cycles_as_the_model_predicts(model_name, material, bxdf, tmp_path):
+    if model_name not in bxdf.models():
+        pytest.skip(f"model {model_name} is not in this build's registry yet")
+    params = {"reflectance": (0.7, 0.5, 0.3)}
+    if any(s["name"] == "roughness" for s in bxdf.models()[model_name]):
+        params["roughness"] = 0.6
+    model = api.assign(material, model_name, **params)
+    _set_up(material)
+    assert material.bxdf_lab.cycles_label == "exact"
+    pixels = _render_plane(material, str(tmp_path / "cycles.exr"))
+    expected = _predicted(model)
+    assert expected.min() > 0.05
+    np.testing.assert_allclose(pixels, np.broadcast_to(expected, pixels.shape), rtol=2e-3)
+
+
+def test_every_registry_model_gets_a_cycles_material(bxdf, material):
+    for model_name in bxdf.models():
+        api.assign(material, model_name)
+        _set_up(material)
+        assert material.bxdf_lab.cycles_label in ("exact", "approximate"), model_name
+        assert material.bxdf_lab.cycles_mapping
+        links = material.node_tree.nodes["Material Output"].inputs["Surface"].links
+        assert len(links) == 1 and links[0].from_node.type.startswith("BSDF")
+
+
+def test_set_up_of_a_broken_material_is_an_error(material):
+    material.bxdf_lab.lambertian.reflectance = (float("nan"), 0.5, 0.5)
+    with bpy.context.temp_override(material=material):
+        with pytest.raises(RuntimeError, match="reflectance"):
+            bpy.ops.bxdf_lab.set_up_cycles()

@@ -1,0 +1,60 @@
+"""The BXDF_LAB render engine: errors are reported and recorded, never swallowed or faked, and a
+failed render writes no file."""
+
+import os
+
+import bpy
+import pytest
+
+from bxdf_lab import api, engine
+
+
+@pytest.fixture
+def small_scene(material, tmp_path):
+    scene = bpy.context.scene
+    mesh = bpy.data.meshes.new("plane")
+    mesh.from_pydata([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [], [(0, 1, 2, 3)])
+    mesh.materials.append(material)
+    scene.collection.objects.link(bpy.data.objects.new("plane", mesh))
+    cam = bpy.data.objects.new("cam", bpy.data.cameras.new("cam"))
+    cam.location = (0, 0, 5)
+    scene.collection.objects.link(cam)
+    scene.camera = cam
+    scene.render.engine = "BXDF_LAB"
+    scene.render.resolution_x = scene.render.resolution_y = 16
+    scene.render.resolution_percentage = 100
+    scene.render.filepath = str(tmp_path / "out.exr")
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    return scene
+
+
+def test_a_broken_setting_gives_a_reported_error_and_no_file(small_scene, material):
+    api.assign(material, "lambertian")
+    material.bxdf_lab.lambertian.reflectance = (0.5, float("nan"), 0.5)  # typed through Python
+    # The engine's self.report({'ERROR'}) reaches the caller of the operator.
+    with pytest.raises(RuntimeError, match="Test Material.*reflectance"):
+        bpy.ops.render.render(write_still=True)
+    assert "Test Material" in engine.last_error and "reflectance" in engine.last_error
+    assert engine.last_cancelled
+    assert not os.path.exists(small_scene.render.filepath)
+
+
+def test_a_render_needs_the_renderer_and_never_fakes_one(small_scene, material, bxdf):
+    api.assign(material, "lambertian")
+    if hasattr(bxdf, "render"):
+        bpy.ops.render.render(write_still=True)
+        assert engine.last_error == ""
+        assert os.path.exists(small_scene.render.filepath)
+    else:
+        with pytest.raises(RuntimeError, match="no renderer"):
+            bpy.ops.render.render(write_still=True)
+        assert "bxdf.render is missing" in engine.last_error
+        assert not os.path.exists(small_scene.render.filepath)
+
+
+def test_render_settings_live_on_the_scene(small_scene):
+    settings = small_scene.bxdf_lab_render
+    assert (settings.samples, settings.max_bounces, settings.pixel_filter, settings.threads,
+            settings.seed) == (64, 8, "GAUSSIAN", 0, 0)
+    with pytest.raises(TypeError):
+        settings.pixel_filter = "NO_SUCH_FILTER"

@@ -1,0 +1,168 @@
+"""Scene export (depsgraph → dict of numpy arrays), checked on a small hand-built scene."""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+
+from bxdf_lab import api, export
+
+CUBE_VERTS = [(x, y, z) for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]
+CUBE_FACES = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+
+
+def _object(name, verts, faces, collection):
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata(verts, [], faces)
+    obj = bpy.data.objects.new(name, mesh)
+    collection.objects.link(obj)
+    return obj
+
+
+def _material(name, model, **params):
+    material = bpy.data.materials.new(name)
+    api.assign(material, model, **params)
+    return material
+
+
+@pytest.fixture
+def scene():
+    scene = bpy.context.scene
+    root = scene.collection
+    red = _material("red", "lambertian", reflectance=(0.8, 0.1, 0.1))
+    blue = _material("blue", "lambertian", reflectance=(0.1, 0.1, 0.8))
+
+    plane = _object("plane", [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [(0, 1, 2, 3)], root)
+    plane.data.uv_layers.new(name="UVMap")
+    plane.data.polygons[0].use_smooth = True
+    plane.data.materials.append(red)
+
+    # The cube lives in its own collection, instanced once more by an empty at x = 5.
+    cubes = bpy.data.collections.new("cubes")
+    root.children.link(cubes)
+    cube = _object("cube", CUBE_VERTS, CUBE_FACES, cubes)
+    cube.data.materials.append(red)
+    cube.data.materials.append(blue)
+    cube.data.polygons[1].material_index = 1  # the +x face
+    cube.location = (0, 0, 3)
+    empty = bpy.data.objects.new("instancer", None)
+    empty.instance_type = "COLLECTION"
+    empty.instance_collection = cubes
+    empty.location = (5, 0, 0)
+    root.objects.link(empty)
+
+    for kind, energy in (("POINT", 100.0), ("SUN", 3.0), ("AREA", 50.0)):
+        light = bpy.data.lights.new(kind.lower(), kind)
+        light.energy = energy
+        light.color = (1.0, 0.5, 0.25)
+        if kind == "AREA":
+            light.shape, light.size, light.size_y = "RECTANGLE", 2.0, 0.5
+        obj = bpy.data.objects.new(kind.lower(), light)
+        obj.location = (0, 0, 10)
+        root.objects.link(obj)
+
+    cam = bpy.data.cameras.new("cam")
+    cam.lens, cam.sensor_width, cam.sensor_fit = 35.0, 32.0, "HORIZONTAL"
+    cam.shift_x, cam.clip_start, cam.clip_end = 0.1, 0.05, 200.0
+    cam_obj = bpy.data.objects.new("cam", cam)
+    cam_obj.location = (0, -10, 5)
+    root.objects.link(cam_obj)
+    scene.camera = cam_obj
+    scene.render.resolution_x, scene.render.resolution_y = 320, 240
+    scene.render.resolution_percentage = 50
+
+    world = bpy.data.worlds.new("world")
+    world.use_nodes = True
+    background = world.node_tree.nodes["Background"]
+    background.inputs["Color"].default_value = (0.2, 0.3, 0.4, 1.0)
+    background.inputs["Strength"].default_value = 2.0
+    scene.world = world
+    return scene
+
+
+def _export():
+    return export.export_scene(bpy.context.evaluated_depsgraph_get())
+
+
+def test_meshes_and_instances(scene):
+    data = _export()
+    names = [m["name"] for m in data["meshes"]]
+    assert sorted(names) == ["cube", "plane"]  # the instanced cube shares the cube's mesh
+    cube = data["meshes"][names.index("cube")]
+    plane = data["meshes"][names.index("plane")]
+    assert cube["positions"].dtype == np.float32 and cube["positions"].shape == (8, 3)
+    assert cube["triangles"].dtype == np.int32 and cube["triangles"].shape == (12, 3)
+    assert cube["normals"].shape == (12, 3, 3) and cube["uvs"] is None
+    assert plane["uvs"].shape == (2, 3, 2) and plane["uvs"].dtype == np.float32
+    # instances: plane, cube, and the cube again at x = 5 (+3 in z from the cube itself)
+    cube_index = names.index("cube")
+    cube_matrices = data["instance_matrix"][data["instance_mesh"] == cube_index]
+    assert len(data["instance_mesh"]) == 3 and len(cube_matrices) == 2
+    offsets = sorted(tuple(m[:3, 3]) for m in cube_matrices)
+    assert offsets == [pytest.approx((0, 0, 3)), pytest.approx((5, 0, 3))]
+
+
+def test_flat_faces_keep_face_normals_and_smooth_faces_vertex_normals(scene):
+    data = _export()
+    cube = next(m for m in data["meshes"] if m["name"] == "cube")
+    p = cube["positions"][cube["triangles"]]  # (T, 3 corners, 3)
+    face_normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    face_normal /= np.linalg.norm(face_normal, axis=1, keepdims=True)
+    np.testing.assert_allclose(cube["normals"], np.repeat(face_normal[:, None], 3, axis=1), atol=1e-6)
+    plane = next(m for m in data["meshes"] if m["name"] == "plane")
+    np.testing.assert_allclose(plane["normals"].reshape(-1, 3), [[0, 0, 1]] * 6, atol=1e-6)
+
+
+def test_material_indices_point_into_the_scene_material_table(scene):
+    data = _export()
+    table = [m["name"] for m in data["materials"]]
+    assert sorted(table) == ["blue", "red"]
+    assert data["materials"][table.index("red")]["model"] == "lambertian"
+    assert data["materials"][table.index("red")]["params"]["reflectance"] == pytest.approx((0.8, 0.1, 0.1))
+    cube = next(m for m in data["meshes"] if m["name"] == "cube")
+    p = cube["positions"][cube["triangles"]]
+    on_plus_x = np.all(np.isclose(p[:, :, 0], 1.0), axis=1)
+    assert on_plus_x.sum() == 2
+    assert set(cube["material_indices"][on_plus_x]) == {table.index("blue")}
+    assert set(cube["material_indices"][~on_plus_x]) == {table.index("red")}
+
+
+def test_lights_in_blender_units(scene):
+    lights = {l["type"]: l for l in _export()["lights"]}
+    color = np.array([1.0, 0.5, 0.25])
+    point = lights["point"]
+    np.testing.assert_allclose(point["intensity"], 100.0 * color / (4 * math.pi), rtol=1e-6)
+    np.testing.assert_allclose(point["position"], (0, 0, 10))
+    np.testing.assert_allclose(point["direction"], (0, 0, -1), atol=1e-7)
+    np.testing.assert_allclose(lights["sun"]["irradiance"], 3.0 * color, rtol=1e-6)
+    area = lights["area"]
+    assert area["area"] == pytest.approx(1.0)
+    np.testing.assert_allclose(area["radiance"], 50.0 * color / math.pi, rtol=1e-6)
+
+
+def test_camera_resolution_and_world(scene):
+    data = _export()
+    camera = data["camera"]
+    assert data["resolution"] == camera["resolution"] == (160, 120)
+    assert (camera["lens"], camera["sensor_width"], camera["sensor_fit"]) == (35.0, 32.0, "horizontal")
+    assert camera["shift"] == pytest.approx((0.1, 0.0)) and camera["clip"] == pytest.approx((0.05, 200.0))
+    np.testing.assert_allclose(camera["matrix"][:3, 3], (0, -10, 5))
+    np.testing.assert_allclose(data["world"]["color"], (0.4, 0.6, 0.8), rtol=1e-6)
+    assert data["warnings"] == []
+
+
+def test_a_textured_world_is_exported_as_its_colour_with_a_warning(scene):
+    tree = scene.world.node_tree
+    sky = tree.nodes.new("ShaderNodeTexSky")
+    tree.links.new(sky.outputs["Color"], tree.nodes["Background"].inputs["Color"])
+    scene.world.color = (0.1, 0.2, 0.3)
+    data = _export()
+    np.testing.assert_allclose(data["world"]["color"], (0.1, 0.2, 0.3), rtol=1e-6)
+    assert len(data["warnings"]) == 1 and "world" in data["warnings"][0]
+
+
+def test_a_broken_material_is_refused_naming_it(scene):
+    bpy.data.materials["blue"].bxdf_lab.lambertian.reflectance = (0.5, float("nan"), 0.5)
+    with pytest.raises(ValueError, match="blue.*reflectance"):
+        _export()
