@@ -8,10 +8,14 @@ so it can be tested, pickled, or handed to the renderer's binding unchanged.
       "meshes": [{"name": str,
                   "positions": (V, 3) float32, object space,
                   "triangles": (T, 3) int32 indices into positions,
-                  "normals": (T, 3, 3) float32, shading normal per triangle corner (smooth,
-                             flat or custom split normals, as Blender shades them),
-                  "uvs": (T, 3, 2) float32 per corner, or None without a UV map,
+                  "normals": (N, 3) float32 and "normal_indices": (T, 3) int32: the shading
+                      normal at corner k of triangle t is normals[normal_indices[t, k]] (smooth,
+                      flat, auto-smooth or custom normals, as Blender shades them),
+                  "uvs": (U, 2) float32 and "uv_indices": (T, 3) int32, or both None without a
+                      UV map,
                   "material_indices": (T,) int32 into "materials", -1 = no material}],
+    Attributes are indexed separately from positions (as in OBJ), so that a flat face or a UV
+    seam needs no duplicated vertices and a smooth mesh shares one normal per vertex.
       "instance_mesh": (I,) int32 into "meshes", "instance_matrix": (I, 4, 4) float32 object→world,
       "materials": [{"name", "model", "params"}],    # bxdf.make(model, **params)
       "lights": [{"type", "name", "matrix", "position", "direction", "color", "power", ...}],
@@ -37,39 +41,94 @@ def _matrix(m):
     return np.array(m, dtype=np.float32).reshape(4, 4)
 
 
+def _fan_corners(loop_start, loop_total):
+    """Loop indices (T, 3) and polygon index (T,) of each triangle of a mesh whose polygons are
+    triangles and quads, in Blender's own order and split: a quad (0, 1, 2, 3) becomes
+    (0, 1, 2), (0, 2, 3), as Blender's loop triangles do (checked by tests/blender/test_export.py)."""
+    per_polygon = loop_total - 2
+    triangle_polygon = np.repeat(np.arange(len(loop_start), dtype=np.int32), per_polygon)
+    first = np.cumsum(per_polygon) - per_polygon  # index of each polygon's first triangle
+    k = np.arange(len(triangle_polygon), dtype=np.int32) - np.repeat(first, per_polygon).astype(np.int32)
+    start = loop_start[triangle_polygon]
+    corners = np.stack([start, start + k + 1, start + k + 2], axis=1)
+    return corners, triangle_polygon
+
+
+def _loop_triangle_corners(mesh):
+    """The general (slower, RNA per element) path for meshes with n-gons: Blender's own
+    triangulation of each polygon."""
+    n_triangles = len(mesh.loop_triangles)
+    corners = np.empty(n_triangles * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("loops", corners)
+    triangle_polygon = np.empty(n_triangles, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("polygon_index", triangle_polygon)
+    return corners.reshape(n_triangles, 3), triangle_polygon
+
+
 def mesh_arrays(mesh):
     """Arrays of one evaluated Blender mesh (see the module docstring for the layout)."""
-    mesh.calc_loop_triangles()
-    n_vertices = len(mesh.vertices)
-    n_triangles = len(mesh.loop_triangles)
+    n_vertices, n_polygons, n_loops = len(mesh.vertices), len(mesh.polygons), len(mesh.loops)
     positions = np.empty(n_vertices * 3, dtype=np.float32)
     mesh.vertices.foreach_get("co", positions)
-    triangles = np.empty(n_triangles * 3, dtype=np.int32)
-    mesh.loop_triangles.foreach_get("vertices", triangles)
-    corner_loops = np.empty(n_triangles * 3, dtype=np.int32)
-    mesh.loop_triangles.foreach_get("loops", corner_loops)
-    material_indices = np.empty(n_triangles, dtype=np.int32)
-    mesh.loop_triangles.foreach_get("material_index", material_indices)
+    loop_vertex = np.empty(n_loops, dtype=np.int32)
+    mesh.loops.foreach_get("vertex_index", loop_vertex)
+    loop_start = np.empty(n_polygons, dtype=np.int32)
+    mesh.polygons.foreach_get("loop_start", loop_start)
+    loop_total = np.empty(n_polygons, dtype=np.int32)
+    mesh.polygons.foreach_get("loop_total", loop_total)
+    # Polygon arrays are raw memory (fast); loop_triangles go through RNA per element (about
+    # 1 s per million triangles), so triangles and quads are split here and only n-gons use them.
+    if n_polygons == 0 or loop_total.max() <= 4:
+        corners, triangle_polygon = _fan_corners(loop_start, loop_total)
+    else:
+        mesh.calc_loop_triangles()
+        corners, triangle_polygon = _loop_triangle_corners(mesh)
+    triangles = loop_vertex[corners]
 
-    # Split normals honour smooth/flat faces, auto smooth and custom normals alike.
-    mesh.calc_normals_split()
-    loop_normals = np.empty(len(mesh.loops) * 3, dtype=np.float32)
-    mesh.loops.foreach_get("normal", loop_normals)
-    normals = loop_normals.reshape(-1, 3)[corner_loops].reshape(n_triangles, 3, 3)
+    polygon_material = np.zeros(n_polygons, dtype=np.int32)
+    if "material_index" in mesh.attributes:  # absent: every polygon uses slot 0
+        mesh.polygons.foreach_get("material_index", polygon_material)
 
-    uvs = None
+    smooth = np.empty(n_polygons, dtype=bool)
+    mesh.polygons.foreach_get("use_smooth", smooth)
+    if mesh.has_custom_normals or mesh.use_auto_smooth:
+        # Split normals honour auto smooth and custom normals; they are per loop.
+        mesh.calc_normals_split()
+        normals = np.empty(n_loops * 3, dtype=np.float32)
+        mesh.loops.foreach_get("normal", normals)
+        normals, normal_indices = normals.reshape(n_loops, 3), corners
+    else:
+        vertex_normals = np.empty(n_vertices * 3, dtype=np.float32)
+        mesh.vertices.foreach_get("normal", vertex_normals)
+        vertex_normals = vertex_normals.reshape(n_vertices, 3)
+        if smooth.all():
+            normals, normal_indices = vertex_normals, triangles
+        else:
+            polygon_normals = np.empty(n_polygons * 3, dtype=np.float32)
+            mesh.polygons.foreach_get("normal", polygon_normals)
+            flat_index = (n_vertices + triangle_polygon)[:, None]
+            if not smooth.any():
+                normals = polygon_normals.reshape(n_polygons, 3)
+                normal_indices = np.repeat(triangle_polygon[:, None], 3, axis=1)
+            else:
+                normals = np.concatenate([vertex_normals, polygon_normals.reshape(n_polygons, 3)])
+                normal_indices = np.where(smooth[triangle_polygon][:, None], triangles, flat_index)
+
+    uvs, uv_indices = None, None
     uv_layer = mesh.uv_layers.active
     if uv_layer is not None:
-        loop_uvs = np.empty(len(mesh.loops) * 2, dtype=np.float32)
-        uv_layer.data.foreach_get("uv", loop_uvs)
-        uvs = loop_uvs.reshape(-1, 2)[corner_loops].reshape(n_triangles, 3, 2)
+        uvs = np.empty(n_loops * 2, dtype=np.float32)
+        uv_layer.data.foreach_get("uv", uvs)
+        uvs, uv_indices = uvs.reshape(n_loops, 2), corners
 
     return {
         "positions": positions.reshape(n_vertices, 3),
-        "triangles": triangles.reshape(n_triangles, 3),
+        "triangles": triangles,
         "normals": normals,
+        "normal_indices": np.ascontiguousarray(normal_indices, dtype=np.int32),
         "uvs": uvs,
-        "material_indices": material_indices,
+        "uv_indices": uv_indices,
+        "material_indices": polygon_material[triangle_polygon],
     }
 
 

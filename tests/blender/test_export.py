@@ -93,8 +93,12 @@ def test_meshes_and_instances(scene):
     plane = data["meshes"][names.index("plane")]
     assert cube["positions"].dtype == np.float32 and cube["positions"].shape == (8, 3)
     assert cube["triangles"].dtype == np.int32 and cube["triangles"].shape == (12, 3)
-    assert cube["normals"].shape == (12, 3, 3) and cube["uvs"] is None
-    assert plane["uvs"].shape == (2, 3, 2) and plane["uvs"].dtype == np.float32
+    assert cube["normal_indices"].shape == (12, 3) and cube["uvs"] is None
+    assert plane["uvs"].shape == (4, 2) and plane["uvs"].dtype == np.float32
+    assert plane["uv_indices"].shape == (2, 3)
+    corner_uvs = plane["uvs"][plane["uv_indices"]]  # Blender's default UVs: u = x, v = y mapped to [0, 1]
+    np.testing.assert_allclose(corner_uvs, (plane["positions"][plane["triangles"]][:, :, :2] + 1) / 2,
+                               atol=1e-6)
     # instances: plane, cube, and the cube again at x = 5 (+3 in z from the cube itself)
     cube_index = names.index("cube")
     cube_matrices = data["instance_matrix"][data["instance_mesh"] == cube_index]
@@ -109,9 +113,44 @@ def test_flat_faces_keep_face_normals_and_smooth_faces_vertex_normals(scene):
     p = cube["positions"][cube["triangles"]]  # (T, 3 corners, 3)
     face_normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
     face_normal /= np.linalg.norm(face_normal, axis=1, keepdims=True)
-    np.testing.assert_allclose(cube["normals"], np.repeat(face_normal[:, None], 3, axis=1), atol=1e-6)
+    corner_normals = cube["normals"][cube["normal_indices"]]
+    np.testing.assert_allclose(corner_normals, np.repeat(face_normal[:, None], 3, axis=1), atol=1e-6)
     plane = next(m for m in data["meshes"] if m["name"] == "plane")
-    np.testing.assert_allclose(plane["normals"].reshape(-1, 3), [[0, 0, 1]] * 6, atol=1e-6)
+    np.testing.assert_allclose(plane["normals"][plane["normal_indices"]].reshape(-1, 3),
+                               [[0, 0, 1]] * 6, atol=1e-6)
+
+
+def _corner_normals(data):
+    return data["normals"][data["normal_indices"]]
+
+
+def _blender_triangles(mesh):
+    """Blender's own triangulation and split normals, for comparison."""
+    mesh.calc_loop_triangles()
+    mesh.calc_normals_split()
+    loops = np.array([t.loops[:] for t in mesh.loop_triangles])
+    vertices = np.array([t.vertices[:] for t in mesh.loop_triangles])
+    normals = np.array([[mesh.loops[i].normal[:] for i in tri] for tri in loops])
+    return vertices, normals
+
+
+def test_triangles_and_normals_match_blenders_own_for_every_shading_case():
+    # a non-planar quad, a triangle, a flat quad and (second mesh) a concave pentagon
+    verts = [(0, 0, 0), (2, 0, 0.5), (2, 2, 0), (0, 2, 0.3), (3, 0, 0), (3, 1, 0.2),
+             (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+    faces = [(0, 1, 2, 3), (1, 4, 5), (6, 7, 8, 9)]
+    pentagon = ([(0, 0, 0), (2, 0, 0), (2, 2, 0), (1, 0.5, 0), (0, 2, 0)], [(0, 1, 2, 3, 4)])
+    for name, (v, f) in {"quads": (verts, faces), "ngon": pentagon}.items():
+        mesh = bpy.data.meshes.new(name)
+        mesh.from_pydata(v, [], f)
+        for case in ("flat", "smooth", "mixed", "auto_smooth"):
+            for i, polygon in enumerate(mesh.polygons):
+                polygon.use_smooth = case in ("smooth", "auto_smooth") or (case == "mixed" and i % 2 == 0)
+            mesh.use_auto_smooth = case == "auto_smooth"
+            data = export.mesh_arrays(mesh)
+            vertices, normals = _blender_triangles(mesh)
+            np.testing.assert_array_equal(data["triangles"], vertices, err_msg=f"{name} {case}")
+            np.testing.assert_allclose(_corner_normals(data), normals, atol=1e-6, err_msg=f"{name} {case}")
 
 
 def test_material_indices_point_into_the_scene_material_table(scene):
