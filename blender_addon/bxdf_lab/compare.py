@@ -9,6 +9,7 @@ material.pov settings (use_nodes off) for POV-Ray.
 import contextlib
 import os
 
+import addon_utils
 import bpy
 import numpy as np
 
@@ -59,13 +60,18 @@ def _engine_settings(scene, engine_id):
 
 def render_engine(scene, engine_id, path):
     """Renders `scene` with one engine into `path` (EXR). Returns (ok, message)."""
+    if engine_id == "POVRAY_RENDER" and not hasattr(bpy.types.Scene, "pov"):
+        addon_utils.enable("render_povray", default_set=True)
     if engine_id not in {e.bl_idname for e in bpy.types.RenderEngine.__subclasses__()} | {"CYCLES"}:
         return False, f"{engine_id} is not available (is its add-on enabled?)"
     if os.path.exists(path):
         os.remove(path)
     with _temporarily(_engine_settings(scene, engine_id)):
         scene.render.filepath = path
-        bpy.ops.render.render(write_still=True, scene=scene.name)
+        try:
+            bpy.ops.render.render(write_still=True, scene=scene.name)
+        except RuntimeError as exc:  # an engine's error report
+            return False, str(exc)
     if engine_id == "BXDF_LAB" and engine.last_error:
         return False, engine.last_error
     if not os.path.exists(path):

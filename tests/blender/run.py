@@ -25,4 +25,6 @@ args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 if not any(os.path.exists(a.split("::")[0]) for a in args if not a.startswith("-")):
     args.append(HERE)  # no test paths given: the whole suite
 # -p no:cacheprovider: the source tree stays clean; the add-on is enabled by conftest.py.
-sys.exit(pytest.main(["-p", "no:cacheprovider", "-q"] + args))
+# render_povray (Blender's bundled POV-Ray add-on) imports the deprecated imghdr.
+sys.exit(pytest.main(["-p", "no:cacheprovider", "-q", "-W", "ignore:'imghdr' is deprecated:DeprecationWarning"]
+                     + args))
