@@ -3,14 +3,14 @@
 import bpy
 from bpy.props import StringProperty
 
-from .. import api, dependency
+from .. import api, dependency, properties
 from ._common import active_material, poll_material
 
 
 def preset_names():
-    presets = dependency.require().presets()
-    return list(presets.keys()) if isinstance(presets, dict) else [
-        p if isinstance(p, str) else p["name"] for p in presets]
+    """Presets whose model this build's registry has ({name: {"model", "doc", "params"}})."""
+    return [name for name, preset in dependency.require().presets().items()
+            if preset["model"] in properties.MODELS]
 
 
 class BXDFLAB_OT_apply_preset(bpy.types.Operator):
