@@ -67,11 +67,10 @@ def _fresnel_colour(params):
     bxdf = dependency.require()
     kind = params.get("fresnel", "none")
     if kind == "conductor":
-        return np.asarray(bxdf.fresnel_conductor(np.array([1.0]), params["eta"], params["k"])).reshape(3)
+        return np.asarray(bxdf.fresnel_conductor(1.0, params["eta"], params["k"]),
+                          dtype=float).reshape(3)
     if kind == "dielectric":
-        f0 = float(np.asarray(bxdf.fresnel_dielectric(np.array([1.0]), params["eta_i"],
-                                                       params["eta_t"])).reshape(-1)[0])
-        return np.full(3, f0)
+        return np.full(3, float(bxdf.fresnel_dielectric(1.0, params["eta_i"], params["eta_t"])))
     return np.ones(3)
 
 
@@ -134,28 +133,28 @@ def mapping_for(name, params, model):
         return Mapping("ShaderNodeBsdfTranslucent", EXACT, "Lambertian transmission: Translucent BSDF",
                        {"Color": _rgba(params["transmittance"])})
     if name == "cycles_oren_nayar":
-        roughness = float(params.get("roughness", params.get("sigma", 0.0)))
-        return Mapping("ShaderNodeBsdfDiffuse", EXACT, f"Cycles' Oren–Nayar, roughness {roughness:g}",
-                       {"Color": _rgba(params["reflectance"]), "Roughness": roughness})
+        return Mapping("ShaderNodeBsdfDiffuse", EXACT,
+                       f"Cycles' Oren–Nayar: Diffuse BSDF, roughness {params['roughness']:g}",
+                       {"Color": _rgba(params["color"]), "Roughness": float(params["roughness"])})
     if name == "oren_nayar":
         sigma_c, color, a, b = classic_oren_nayar(params["reflectance"], params["sigma"])
         return Mapping("ShaderNodeBsdfDiffuse", APPROXIMATE,
                        f"classic Oren–Nayar σ={params['sigma']:g}° (A={a:.4g}, B={b:.4g}) → Cycles' "
                        f"improved Oren–Nayar roughness B/A = {sigma_c:.4g}, colour scaled to match A; "
                        "differs where cos(φi−φo) < 0", {"Color": _rgba(color), "Roughness": sigma_c})
-    if name in ("microfacet", "cycles_glossy"):
-        mapping = _microfacet(params) if "alpha_x" in params or "exponent" in params else None
-        if name == "cycles_glossy" and "roughness" in params:
-            inputs = {"Color": _rgba(params.get("reflectance", (1, 1, 1))),
-                      "Roughness": float(params["roughness"])}
-            node = "ShaderNodeBsdfGlossy"
-            if "anisotropy" in params:
-                inputs["Anisotropy"] = float(params["anisotropy"])
-                node = "ShaderNodeBsdfAnisotropic"
-            mapping = Mapping(node, EXACT, "Cycles' own glossy formula", inputs,
-                              {"distribution": str(params.get("distribution", "ggx")).upper()})
-        if mapping is not None:
-            return mapping
+    if name == "microfacet":
+        return _microfacet(params)
+    if name == "cycles_glossy":
+        anisotropy = float(params["anisotropy"])
+        inputs = {"Color": _rgba(params["color"]), "Roughness": float(params["roughness"])}
+        node = "ShaderNodeBsdfGlossy"
+        if anisotropy != 0.0:
+            inputs["Anisotropy"] = anisotropy
+            node = "ShaderNodeBsdfAnisotropic"
+        return Mapping(node, EXACT,
+                       f"Cycles' own {params['distribution']}: roughness {params['roughness']:g}, "
+                       f"anisotropy {anisotropy:g}", inputs,
+                       {"distribution": params["distribution"].upper()})
     if name == "specular_reflection":
         fresnel = _fresnel_colour(params)
         exact = params.get("fresnel", "none") == "none"

@@ -86,18 +86,20 @@ def _finish_for(name, params, model):
     if name == "specular_reflection":
         return ((0, 0, 0), 0.0, None, params["reflectance"], APPROXIMATE,
                 "mirror → POV reflection with the reflectance colour (no Fresnel)")
-    distribution = params.get("distribution")
-    if name in ("microfacet", "cycles_glossy") and distribution:
-        if "exponent" in params and distribution == "blinn":
+    if name in ("microfacet", "cycles_glossy"):
+        distribution = params["distribution"]
+        if distribution == "blinn":
             exponent = float(params["exponent"])
-        elif "alpha_x" in params:
-            alpha = math.sqrt(float(params["alpha_x"]) * float(params["alpha_y"]))
-            exponent = 2.0 / (alpha * alpha) - 2.0
-        elif "exponent_x" in params:
+        elif distribution == "ashikhmin_shirley":
             exponent = math.sqrt(float(params["exponent_x"]) * float(params["exponent_y"]))
         else:
-            exponent = 2.0 / max(float(params.get("roughness", 0.5)) ** 4, 1e-8) - 2.0
-        reflectance = np.asarray(params.get("reflectance", (1, 1, 1)), dtype=float)
+            if name == "cycles_glossy":  # Cycles: α = roughness² (isotropic part)
+                alpha = float(params["roughness"]) ** 2
+            else:
+                alpha = math.sqrt(float(params["alpha_x"]) * float(params["alpha_y"]))
+            exponent = 2.0 / max(alpha * alpha, 1e-12) - 2.0
+        reflectance = np.asarray(params["color" if name == "cycles_glossy" else "reflectance"],
+                                 dtype=float)
         # Blinn lobe at normal view: f·cosθi·E ≈ R(n+2)/(8π)·(n·h)^n·I/d² and POV gives
         # S·(n·h)^e·C·2D²/d² = S·(n·h)^e·I/(π d²): S = R(n+2)/8, e = n.
         strength = float(reflectance.max()) * (exponent + 2.0) / 8.0
@@ -106,6 +108,12 @@ def _finish_for(name, params, model):
                 f"{distribution} → POV Blinn highlight exponent {exponent:.4g} (α = "
                 f"{alpha_from_exponent(exponent):.4g}), strength R(n+2)/8 = {strength:.4g} "
                 "clamped to POV's range; no Fresnel, shadowing or 1/cosθo")
+    if name == "cycles_oren_nayar":
+        # Its constant term is colour·A, A = 1/(π + (π/2 − 2/3)σ); POV's diffuse stands for R/π.
+        scale = math.pi / (math.pi + (math.pi / 2 - 2.0 / 3.0) * float(params["roughness"]))
+        return (tuple(scale * c for c in params["color"]), 1.0, None, None, APPROXIMATE,
+                f"Cycles' Oren–Nayar → Lambert with its constant term (colour × {scale:.4g}); "
+                "POV has no Oren–Nayar")
     albedo = tuple(float(c) for c in np.asarray(model.rho_hh(4096)).reshape(3))
     return (albedo, 1.0, None, None, APPROXIMATE,
             f"{name} → Lambert with the hemispherical albedo ({albedo[0]:.3f}, {albedo[1]:.3f}, "

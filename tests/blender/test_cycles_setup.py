@@ -71,13 +71,16 @@ def test_lambertian_becomes_an_exact_diffuse_bsdf(material):
     assert output.inputs["Surface"].links[0].from_node == bsdf
 
 
-@pytest.mark.parametrize("model_name", ["lambertian", "cycles_oren_nayar"])
-def test_exact_set_up_renders_in_cycles_as_the_model_predicts(model_name, material, bxdf, tmp_path):
-    if model_name not in bxdf.models():
-        pytest.skip(f"model {model_name} is not in this build's registry yet")
-    params = {"reflectance": (0.7, 0.5, 0.3)}
-    if any(s["name"] == "roughness" for s in bxdf.models()[model_name]):
-        params["roughness"] = 0.6
+@pytest.mark.parametrize("model_name, params", [
+    ("lambertian", {"reflectance": (0.7, 0.5, 0.3)}),
+    ("cycles_oren_nayar", {"color": (0.7, 0.5, 0.3), "roughness": 0.6}),
+    ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.6, "distribution": "ggx"}),
+    ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.6, "distribution": "beckmann"}),
+    ("microfacet", {"reflectance": (0.7, 0.5, 0.3), "distribution": "ggx", "alpha_x": 0.4,
+                    "alpha_y": 0.4, "shadowing": "smith", "fresnel": "none"}),
+])
+def test_exact_set_up_renders_in_cycles_as_the_model_predicts(model_name, params, material, bxdf,
+                                                              tmp_path):
     model = api.assign(material, model_name, **params)
     _set_up(material)
     assert material.bxdf_lab.cycles_label == "exact"
