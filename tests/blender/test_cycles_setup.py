@@ -105,3 +105,29 @@ def test_set_up_of_a_broken_material_is_an_error(material):
     with bpy.context.temp_override(material=material):
         with pytest.raises(RuntimeError, match="reflectance"):
             bpy.ops.bxdf_lab.set_up_cycles()
+
+
+def test_classic_oren_nayar_maps_to_cycles_roughness_b_over_a(material):
+    api.assign(material, "oren_nayar", reflectance=(0.5, 0.5, 0.5), sigma=20.0)
+    _set_up(material)
+    assert material.bxdf_lab.cycles_label == "approximate"
+    s2 = math.radians(20.0) ** 2
+    a, b = 1 - 0.5 * s2 / (s2 + 0.33), 0.45 * s2 / (s2 + 0.09)
+    bsdf = material.node_tree.nodes["Diffuse BSDF"]
+    assert bsdf.inputs["Roughness"].default_value == pytest.approx(b / a, rel=1e-6)
+    # the constant terms agree: colour·A_cycles = R·A/π
+    a_cycles = 1 / (math.pi + (math.pi / 2 - 2 / 3) * (b / a))
+    assert bsdf.inputs["Color"].default_value[0] * a_cycles == pytest.approx(0.5 * a / math.pi, rel=1e-5)
+
+
+def test_anisotropic_microfacet_maps_to_cycles_anisotropy(material):
+    api.assign(material, "microfacet", distribution="ggx", alpha_x=0.1, alpha_y=0.4,
+               shadowing="smith", fresnel="none")
+    _set_up(material)
+    bsdf = material.node_tree.nodes["Anisotropic BSDF"]
+    roughness = bsdf.inputs["Roughness"].default_value
+    anisotropy = bsdf.inputs["Anisotropy"].default_value
+    # Cycles: r = roughness², a ≥ 0 → αx = r(1 − a), αy = r/(1 − a)
+    r = roughness ** 2
+    assert (r * (1 - anisotropy), r / (1 - anisotropy)) == pytest.approx((0.1, 0.4), rel=1e-5)
+    assert material.bxdf_lab.cycles_label == "exact"
