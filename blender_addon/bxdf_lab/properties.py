@@ -8,6 +8,7 @@ element group. Nothing here names a model or a parameter.
 """
 
 import math
+import zlib
 
 import bpy
 from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty,
@@ -24,6 +25,17 @@ LIST_INITIALISED = "bxdf_lists_initialised"
 # Filled by register(): {model name: schema.Model}, and the generated classes.
 MODELS = {}
 _classes = []
+
+
+def enum_number(identifier):
+    """A stable number for an enum item: .blend files store enum values as numbers, so the
+    number must not depend on the item's position (the registry may add or reorder models)."""
+    return zlib.crc32(identifier.encode()) & 0x7FFFFFFF
+
+
+def enum_items(identifiers, labels=None, docs=None):
+    return [(i, (labels or {}).get(i, i.replace("_", " ").title()), (docs or {}).get(i, ""),
+             enum_number(i)) for i in identifiers]
 
 
 def attr_name(param_name):
@@ -80,8 +92,7 @@ def make_property(param, owner_name):
         return FloatVectorProperty(size=3, subtype="COLOR", default=default, min=hmin, max=hmax,
                                    soft_min=smin, soft_max=smax, precision=4, **common)
     if param.kind == "enum":
-        items = [(c, c.replace("_", " ").title(), "") for c in param.choices]
-        return EnumProperty(items=items, default=str(param.default), **common)
+        return EnumProperty(items=enum_items(param.choices), default=str(param.default), **common)
     if param.kind == "bool":
         return BoolProperty(default=bool(param.default), **common)
     if param.kind == "string":
@@ -181,7 +192,8 @@ def _on_model_change(self, _context):
 
 
 def _model_items():
-    return [(m.name, m.label, m.doc or m.name) for m in MODELS.values()]
+    return enum_items(MODELS, {m.name: m.label for m in MODELS.values()},
+                      {m.name: m.doc for m in MODELS.values()})
 
 
 def register():

@@ -122,3 +122,18 @@ def test_generator_handles_every_kind_and_condition():
         del bpy.types.Material.bxdf_lab_test
         bpy.utils.unregister_class(group_cls)
         properties._classes.remove(group_cls)
+
+
+def test_enum_values_are_stable_numbers_and_survive_save_and_load(bxdf, material, tmp_path):
+    """Enum values are stored as numbers in .blend files; ours hash the identifier, so a registry
+    that adds or reorders models does not change what a saved file means."""
+    items = bpy.types.Material.bl_rna.properties["bxdf_lab"].fixed_type.properties["model"].enum_items
+    assert all(item.value == properties.enum_number(item.identifier) for item in items)
+    assert len({item.value for item in items}) == len(items)
+    last = list(bxdf.models())[-1]
+    material.bxdf_lab.model = last
+    material.use_fake_user = True  # an unused material is not saved otherwise
+    path = str(tmp_path / "saved.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    bpy.ops.wm.open_mainfile(filepath=path)
+    assert bpy.data.materials["Test Material"].bxdf_lab.model == last
