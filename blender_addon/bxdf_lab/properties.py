@@ -43,11 +43,6 @@ def attr_name(param_name):
     return param_name + "_" if param_name in _RESERVED else param_name
 
 
-def index_attr(param_name):
-    """The active-element index of a list parameter (for its UIList)."""
-    return attr_name(param_name) + "_index"
-
-
 def _label(param):
     label = param.name.replace("_", " ").capitalize()
     return f"{label} ({param.unit})" if param.unit else label
@@ -109,7 +104,6 @@ def _make_group(class_name, params, owner_name):
             element = _make_group(f"{class_name}_{p.name}", p.fields, f"{owner_name}.{p.name}")
             annotations[attr_name(p.name)] = CollectionProperty(type=element, name=_label(p),
                                                                 description=p.tooltip())
-            annotations[index_attr(p.name)] = bpy.props.IntProperty(name="Active", default=0, min=0)
         else:
             annotations[attr_name(p.name)] = make_property(p, owner_name)
     annotations[LIST_INITIALISED] = BoolProperty(default=False, options={"HIDDEN"})

@@ -27,14 +27,13 @@ def draw_list(layout, group, param):
     box = layout.box()
     row = box.row()
     row.label(text=param.name.replace("_", " ").capitalize())
-    add = row.operator("bxdf_lab.list_add", text="", icon="ADD")
-    add.param = param.name
-    remove = row.operator("bxdf_lab.list_remove", text="", icon="REMOVE")
-    remove.param = param.name
-    collection = getattr(group, properties.attr_name(param.name))
-    for i, element in enumerate(collection):
+    row.operator("bxdf_lab.list_add", text="", icon="ADD").param = param.name
+    for i, element in enumerate(getattr(group, properties.attr_name(param.name))):
         sub = box.column(align=True)
-        sub.label(text=f"{i + 1}")
+        header = sub.row()
+        header.label(text=f"{i + 1}")
+        remove = header.operator("bxdf_lab.list_remove", text="", icon="X")
+        remove.param, remove.index = param.name, i
         draw_params(sub, element, param.fields)
 
 

@@ -137,3 +137,20 @@ def test_enum_values_are_stable_numbers_and_survive_save_and_load(bxdf, material
     bpy.ops.wm.save_as_mainfile(filepath=path)
     bpy.ops.wm.open_mainfile(filepath=path)
     assert bpy.data.materials["Test Material"].bxdf_lab.model == last
+
+
+def test_list_elements_are_added_and_removed(bxdf, material):
+    list_models = {m: s for m, specs in bxdf.models().items() for s in specs if s["kind"] == "list"}
+    assert list_models, "the registry has no list parameter (Lafortune lobes)"
+    from bxdf_lab import api
+    for model_name, spec in list_models.items():
+        material.bxdf_lab.model = model_name
+        n = len(spec["default"])
+        with bpy.context.temp_override(material=material):
+            assert bpy.ops.bxdf_lab.list_add(param=spec["name"]) == {"FINISHED"}
+            assert len(api.describe(material)[1][spec["name"]]) == n + 1
+            assert bpy.ops.bxdf_lab.list_remove(param=spec["name"], index=0) == {"FINISHED"}
+            assert len(api.describe(material)[1][spec["name"]]) == n
+            with pytest.raises(RuntimeError, match="no element"):
+                bpy.ops.bxdf_lab.list_remove(param=spec["name"], index=n + 5)
+        api.make(material)  # still a valid model

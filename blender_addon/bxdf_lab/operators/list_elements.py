@@ -1,7 +1,7 @@
 """Add and remove elements of a list parameter (e.g. Lafortune lobes) of the active material."""
 
 import bpy
-from bpy.props import StringProperty
+from bpy.props import IntProperty, StringProperty
 
 from .. import properties
 from ._common import active_material, poll_material
@@ -31,27 +31,26 @@ class BXDFLAB_OT_list_add(bpy.types.Operator):
         element = collection.add()
         template = spec.default[0] if spec.default else {}
         for field in spec.fields:
-            value = template.get(field.name, field.default)
-            properties.write_value(element, field, value)
-        setattr(group, properties.index_attr(self.param), len(collection) - 1)
+            properties.write_value(element, field, template.get(field.name, field.default))
         return {"FINISHED"}
 
 
 class BXDFLAB_OT_list_remove(bpy.types.Operator):
-    """Remove the active element of a list parameter"""
+    """Remove this element of a list parameter"""
     bl_idname = "bxdf_lab.list_remove"
     bl_label = "Remove Element"
     bl_options = {"REGISTER", "UNDO"}
     param: StringProperty()
+    index: IntProperty(min=0)
 
     poll = classmethod(poll_material)
 
     def execute(self, context):
-        group, collection = _collection(context, self.param)
-        index = getattr(group, properties.index_attr(self.param))
-        if 0 <= index < len(collection):
-            collection.remove(index)
-            setattr(group, properties.index_attr(self.param), max(0, index - 1))
+        _, collection = _collection(context, self.param)
+        if self.index >= len(collection):
+            self.report({"ERROR"}, f"{self.param} has no element {self.index + 1}")
+            return {"CANCELLED"}
+        collection.remove(self.index)
         return {"FINISHED"}
 
 
