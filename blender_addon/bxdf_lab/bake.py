@@ -1,6 +1,7 @@
 """Lobe textures: the bindings' bakes (bxdf.bake_*) turned into Blender images.
 
-- polar lobe: f(ωo, ωi)·|cos θi| over the upper hemisphere of ωi seen from above, in Lambert's
+- polar lobe: f(ωo, ωi)·|cos θi| over the hemisphere of ωi seen from above (the lower one for
+  transmission-only models), in Lambert's
   equal-area projection (every pixel the same solid angle; bxdf.bake_lobe_polar); alpha 1 inside
   the unit disc, 0 outside. A Lambertian gives R/π·cos θi.
 - θh×θd slice: f at Rusinkiewicz's half/difference angles with φd = 90° (bxdf.bake_slice_half_diff),
@@ -30,10 +31,18 @@ def disc_mask(size):
     return (x * x + y * y <= 1.0).astype(np.float32)
 
 
+def hemisphere(model):
+    """Where the lobe lives: "lower" for transmission-only models, else "upper"."""
+    flags = set(model.flags)
+    return "lower" if "transmission" in flags and "reflection" not in flags else "upper"
+
+
 def lobe_polar(model, theta_in_deg, size):
-    """(size, size, 4), rows bottom-up, +y up: the polar lobe for ωo at θo = theta_in_deg, φo = 0."""
+    """(size, size, 4), rows bottom-up, +y up: the polar lobe for ωo at θo = theta_in_deg, φo = 0,
+    over the lower hemisphere for a transmission-only model."""
     bxdf = dependency.require()
-    rgb = bxdf.bake_lobe_polar(model, resolution=size, theta_o=float(theta_in_deg))
+    rgb = bxdf.bake_lobe_polar(model, resolution=size, theta_o=float(theta_in_deg),
+                               hemisphere=hemisphere(model))
     return _rgba(np.flipud(rgb), disc_mask(size))  # bake's row 0 is the top (+y)
 
 

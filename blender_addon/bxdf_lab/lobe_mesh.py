@@ -6,12 +6,14 @@ import bpy
 import numpy as np
 
 from . import dependency
+from .bake import hemisphere
 
 
 def lobe_geometry(model, theta_in_deg, resolution=32, size=1.0):
     """(vertices (V, 3) float32, triangles (T, 3) int32), longest radius `size`."""
     vertices, triangles = dependency.require().lobe_mesh(model, resolution=resolution,
-                                                         theta_o=float(theta_in_deg))
+                                                         theta_o=float(theta_in_deg),
+                                                         hemisphere=hemisphere(model))
     vertices = np.asarray(vertices, dtype=np.float32)
     longest = float(np.linalg.norm(vertices, axis=1).max()) if len(vertices) else 0.0
     if longest > 0.0:

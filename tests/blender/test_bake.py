@@ -90,3 +90,18 @@ def test_add_lobe_mesh_of_a_lambertian_is_a_cosine_lobe(material):
     # the origin: |p − (0, 0, 1)| = 1 (scaled by size/2).
     np.testing.assert_allclose(np.linalg.norm(co - [0, 0, 1.0], axis=1), 1.0, atol=1e-4)
     assert len(obj.data.polygons) > 0 and obj.data.validate() is False
+
+
+def test_transmission_lobes_are_baked_below_the_surface(material):
+    api.assign(material, "lambertian_transmission", transmittance=R)
+    _bake(material, theta_in=0.0, size=32)
+    pixels = _pixels(bpy.data.images[f"{material.name} lobe 0deg"])
+    centres = (np.arange(32) + 0.5) / 32 * 2 - 1
+    x, y = np.meshgrid(centres, centres)
+    inside = x * x + y * y <= 1.0
+    expected = np.asarray(R)[None, :] / math.pi * (1.0 - (x * x + y * y))[inside][:, None]
+    np.testing.assert_allclose(pixels[inside][:, :3], expected, rtol=1e-4, atol=1e-6)
+    with bpy.context.temp_override(material=material):
+        assert bpy.ops.bxdf_lab.add_lobe_mesh(theta_in=0.0) == {"FINISHED"}
+    z = np.array([v.co.z for v in bpy.data.objects[f"{material.name} lobe"].data.vertices])
+    assert z.max() <= 1e-6 and z.min() < -0.5
