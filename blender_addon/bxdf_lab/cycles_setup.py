@@ -18,10 +18,11 @@ APPROXIMATE = "approximate"
 class Mapping:
     """What to build: one BSDF node type, its inputs and settings, the label and the reasoning."""
 
-    def __init__(self, node, label, text, inputs=None, settings=None):
+    def __init__(self, node, label, text, inputs=None, settings=None, diffuse=None):
         self.node, self.label, self.text = node, label, text
         self.inputs = inputs or {}
         self.settings = settings or {}
+        self.diffuse = diffuse  # RGB of a Lambertian term added under the lobe, or None
 
 
 def _rgba(rgb):
@@ -120,8 +121,11 @@ def _microfacet(params):
         node = "ShaderNodeBsdfAnisotropic"
     else:
         node = "ShaderNodeBsdfGlossy"
+    diffuse = tuple(params.get("diffuse", (0.0, 0.0, 0.0)))
+    if max(diffuse) > 0.0:
+        notes.append("Lambertian term diffuse/π: Diffuse BSDF added to the lobe (Add Shader)")
     return Mapping(node, EXACT if exact else APPROXIMATE, "; ".join([text] + notes), inputs,
-                   {"distribution": cycles_distribution})
+                   {"distribution": cycles_distribution}, diffuse if max(diffuse) > 0.0 else None)
 
 
 def mapping_for(name, params, model):
@@ -207,7 +211,18 @@ def set_up(material):
         setattr(bsdf, key, value)
     for key, value in mapping.inputs.items():
         bsdf.inputs[key].default_value = value
-    material.node_tree.links.new(bsdf.outputs[0], output.inputs["Surface"])
+    surface = bsdf.outputs[0]
+    if mapping.diffuse is not None:  # closures add in Cycles: Lambert + lobe is still exact
+        diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+        diffuse.inputs["Color"].default_value = _rgba(mapping.diffuse)
+        diffuse.inputs["Roughness"].default_value = 0.0
+        diffuse.location = (-200, -200)
+        add = nodes.new("ShaderNodeAddShader")
+        add.location = (150, 0)
+        material.node_tree.links.new(diffuse.outputs[0], add.inputs[0])
+        material.node_tree.links.new(bsdf.outputs[0], add.inputs[1])
+        surface = add.outputs[0]
+    material.node_tree.links.new(surface, output.inputs["Surface"])
     material.bxdf_lab.cycles_label = mapping.label
     material.bxdf_lab.cycles_mapping = mapping.text
     return mapping.label, mapping.text

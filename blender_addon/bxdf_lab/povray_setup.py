@@ -103,8 +103,10 @@ def _finish_for(name, params, model):
         # Blinn lobe at normal view: f·cosθi·E ≈ R(n+2)/(8π)·(n·h)^n·I/d² and POV gives
         # S·(n·h)^e·C·2D²/d² = S·(n·h)^e·I/(π d²): S = R(n+2)/8, e = n.
         strength = float(reflectance.max()) * (exponent + 2.0) / 8.0
-        return (tuple(reflectance), 0.0, {"exponent": exponent, "strength": strength}, None,
-                APPROXIMATE,
+        # The pigment carries microfacet's optional Lambertian term; the highlight is grey.
+        diffuse = tuple(params.get("diffuse", (0.0, 0.0, 0.0)))
+        return (diffuse, 1.0 if max(diffuse) > 0.0 else 0.0,
+                {"exponent": exponent, "strength": strength}, None, APPROXIMATE,
                 f"{distribution} → POV Blinn highlight exponent {exponent:.4g} (α = "
                 f"{alpha_from_exponent(exponent):.4g}), strength R(n+2)/8 = {strength:.4g} "
                 "clamped to POV's range; no Fresnel, shadowing or 1/cosθo")

@@ -78,6 +78,9 @@ def test_lambertian_becomes_an_exact_diffuse_bsdf(material):
     ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.6, "distribution": "beckmann"}),
     ("microfacet", {"reflectance": (0.7, 0.5, 0.3), "distribution": "ggx", "alpha_x": 0.4,
                     "alpha_y": 0.4, "shadowing": "smith", "fresnel": "none"}),
+    ("microfacet", {"reflectance": (0.7, 0.5, 0.3), "distribution": "beckmann", "alpha_x": 0.2,
+                    "alpha_y": 0.2, "shadowing": "smith", "fresnel": "none",
+                    "diffuse": (0.1, 0.2, 0.3)}),
 ])
 def test_exact_set_up_renders_in_cycles_as_the_model_predicts(model_name, params, material, bxdf,
                                                               tmp_path):
@@ -97,7 +100,7 @@ def test_every_registry_model_gets_a_cycles_material(bxdf, material):
         assert material.bxdf_lab.cycles_label in ("exact", "approximate"), model_name
         assert material.bxdf_lab.cycles_mapping
         links = material.node_tree.nodes["Material Output"].inputs["Surface"].links
-        assert len(links) == 1 and links[0].from_node.type.startswith("BSDF")
+        assert len(links) == 1 and links[0].from_node.type.startswith("BSDF"), model_name
 
 
 def test_set_up_of_a_broken_material_is_an_error(material):
