@@ -18,8 +18,9 @@ def binding():
     render = getattr(bxdf, "render", None)
     if render is None:
         raise RendererUnavailable(
-            "this build of the 'bxdf' module has no renderer (bxdf.render is missing): rebuild "
-            "BxDF Lab with the Embree renderer (plugin/) and run 'make install-addon'")
+            "the bxdf_lab add-on renders through bxdf.render, which this build of the 'bxdf' "
+            "module has no renderer for (bxdf.render is missing): rebuild BxDF Lab with the "
+            "Embree renderer (plugin/) and run 'make install-addon'")
     return render
 
 
