@@ -14,14 +14,15 @@ so it can be tested, pickled, or handed to the renderer's binding unchanged.
                   "uvs": (U, 2) float32 and "uv_indices": (T, 3) int32, or both None without a
                       UV map,
                   "material_indices": (T,) int32 into "materials", -1 = no material}],
-    Attributes are indexed separately from positions (as in OBJ), so that a flat face or a UV
-    seam needs no duplicated vertices and a smooth mesh shares one normal per vertex.
       "instance_mesh": (I,) int32 into "meshes", "instance_matrix": (I, 4, 4) float32 object→world,
-      "materials": [{"name", "model", "params"}],    # bxdf.make(model, **params)
+      "materials": [{"name", "model", "params", "flags"}],  # bxdf.make(model, **params)
       "lights": [{"type", "name", "matrix", "position", "direction", "color", "power", ...}],
       "camera": {...}, "world": {"color": (3,) float32}, "resolution": (width, height),
       "warnings": [str],  # things exported approximately (e.g. a textured world)
     }
+
+Mesh attributes are indexed separately from positions (as in OBJ), so that a flat face or a UV
+seam needs no duplicated vertices and a smooth mesh shares one normal per vertex.
 
 Light units follow Blender: a point or spot light of power P watts has radiant intensity
 I = P·color/(4π) W/sr (Cycles' convention, reference/renderers.md); a sun gives irradiance
