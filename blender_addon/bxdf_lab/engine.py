@@ -18,6 +18,12 @@ last_error = ""
 last_cancelled = False
 
 
+def cancel_requested(render_engine):
+    """Whether the user asked to stop (Esc). One function, so that headless tests, which have no
+    Esc key, can stand in for the user."""
+    return render_engine.test_break()
+
+
 def pixels_for_blender(image, width, height):
     """A (w·h, 4) C-contiguous float32 array, the only form rect.foreach_set takes quickly."""
     pixels = np.ascontiguousarray(image, dtype=np.float32)
@@ -55,25 +61,33 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
             def on_progress(done, total, image=None):
                 nonlocal cancelled
                 self.update_progress(done / max(total, 1))
-                self.update_stats("BxDF Lab", f"Pass {done}/{total}")
+                self.update_stats("BxDF Lab", f"Tile {done}/{total}")
                 if image is not None:  # a partial result: show it while rendering
                     combined.rect.foreach_set(pixels_for_blender(image, width, height))
                     self.update_result(result)
-                cancelled = self.test_break()
+                cancelled = cancel_requested(self)
                 return not cancelled
 
-            image = renderer.render(data, scene.bxdf_lab_render, on_progress)
-            if cancelled or self.test_break():
+            image, stats = renderer.render(data, scene.bxdf_lab_render, on_progress)
+            for warning in stats.get("warnings", []):
+                self.report({"WARNING"}, warning)
+            if cancelled or stats.get("cancelled") or cancel_requested(self):
                 cancelled = True
             else:
                 combined.rect.foreach_set(pixels_for_blender(image, width, height))
                 self.update_progress(1.0)
+                self.update_stats("BxDF Lab", f"{stats.get('samples_per_pixel', 0)} samples per "
+                                  f"pixel in {stats.get('seconds', 0.0):.2f} s")
         except Exception as exc:  # reported and recorded, never swallowed
             last_error = f"{type(exc).__name__}: {exc}"
             self.report({"ERROR"}, f"BxDF Lab: {exc}")
             print(f"BxDF Lab render failed: {last_error}")
             cancelled = True
         finally:
+            if cancelled and not last_error:
+                # An error report is what stops Blender from writing the (empty) result of a
+                # cancelled render to disk (render.render(write_still=True)); a warning does not.
+                self.report({"ERROR"}, "BxDF Lab: render cancelled; nothing is written")
             last_cancelled = cancelled
             # cancel=True discards the result, so a cancelled or failed render writes no file.
             self.end_result(result, cancel=cancelled)

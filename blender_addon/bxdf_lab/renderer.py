@@ -1,8 +1,9 @@
-"""The one place that calls the renderer's Python binding (plugin/ through `bxdf`).
+"""The one place that calls the renderer's Python binding, bxdf.render (plugin/ through `bxdf`).
 
-The engine hands over the exported scene (export.export_scene) and the render settings and gets
-back a linear RGBA float32 image; progress and cancel go through `on_progress(done, total, image)`
-returning False to stop.
+The engine hands over the exported scene (export.export_scene's dict, which bxdf.render takes as
+it is) and the render settings, and gets back a linear RGBA float32 image with rows bottom-up
+(Blender's order) plus the renderer's statistics; progress and cancel go through
+`on_progress(done, total, image)` returning False to stop.
 """
 
 from . import dependency
@@ -32,6 +33,8 @@ def settings_dict(render_settings):
 
 
 def render(scene_data, render_settings, on_progress):
-    """Renders `scene_data`; returns a (height, width, 4) float32 image, rows bottom-up."""
+    """Renders `scene_data`; returns ((height, width, 4) float32 image with rows bottom-up, stats
+    dict with "cancelled", "warnings", "seconds", ...)."""
     render_fn = binding()
-    return render_fn(scene_data, settings_dict(render_settings), on_progress)
+    return render_fn(scene_data, settings_dict(render_settings), on_progress, bottom_up=True,
+                     return_stats=True)
