@@ -5,7 +5,7 @@ JOBS   ?= $(shell nproc)
 PYTHON := /usr/bin/python3
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps configure build test test-cpp test-python test-blender report bench clean install-addon
+.PHONY: all deps configure build test test-cpp test-python test-blender test-compare report bench clean install-addon
 
 all: build
 
@@ -22,8 +22,9 @@ build: configure
 test: build
 	@bash tools/run-tests.sh $(BUILD)
 
-test-python: build
-	@PYTHONPATH=$(abspath $(BUILD))/python $(PYTHON) -m pytest -q tests/python
+# One suite at a time (make test runs them all).
+test-cpp test-python test-blender test-compare: build
+	@bash tools/run-tests.sh $(BUILD) $(patsubst test-%,%,$@)
 
 report: build
 	@$(BUILD)/core/bxdf-rho-table
