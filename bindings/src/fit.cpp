@@ -92,6 +92,11 @@ same for f = 0), ``sum_squares``, ``samples``, ``iterations`` (of the best start
 ``total_iterations``, ``starts``, ``start_errors``, ``seconds`` and ``model`` (the fit's name,
 e.g. "lafortune2"). Runs with the GIL released.)doc");
 
+  m.def("fit_models", &fit::fit_model_names,
+        R"doc(fit_models() -> list[str]
+
+The names :func:`fit` accepts for `model`, e.g. ``["lambertian", "lafortune", ..., "ggx"]``.)doc");
+
   m.def(
       "fit_error",
       [](py::handle measured_arg, const Model& model, py::handle merl_stride) {

@@ -1,4 +1,5 @@
-"""bxdf.load_measured(), bxdf.fit() and bxdf.fit_error() on the Cornell measurements in data/."""
+"""bxdf.load_measured(), bxdf.fit(), bxdf.fit_error() and bxdf.fit_models() on the Cornell
+measurements in data/."""
 
 import pathlib
 import pickle
@@ -80,6 +81,18 @@ def test_fit_refuses_bad_options(measured, kwargs, words):
         bxdf.fit(measured, **kwargs)
     for w in words:
         assert w in str(err.value), str(err.value)
+
+
+def test_fit_models_are_the_names_fit_accepts(measured):
+    names = bxdf.fit_models()
+    assert set(names) == {"lambertian", "lafortune", "blinn", "ashikhmin_shirley",
+                          "cook_torrance", "ggx"}
+    for name in names:
+        _, report = bxdf.fit(measured, model=name, lobes=1, max_starts=1, max_iterations=2)
+        assert report["model"] == ("lafortune1" if name == "lafortune" else name)
+    with pytest.raises(ValueError) as err:
+        bxdf.fit(measured, model="phong")
+    assert "'phong'" in str(err.value) and all(n in str(err.value) for n in names)
 
 
 def test_fit_refuses_what_is_not_measured():

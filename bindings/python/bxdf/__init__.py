@@ -57,11 +57,11 @@ __all__ = [
     "save_material",
 ]
 
-# fit() and fit_error() exist when the build found Ceres (core/fit); see bxdf.fit.__doc__.
+# fit(), fit_error() and fit_models() exist when the build found Ceres (core/fit); see bxdf.fit.__doc__.
 try:
-    from ._bxdf import fit, fit_error
+    from ._bxdf import fit, fit_error, fit_models
 
-    __all__ += ["fit", "fit_error"]
+    __all__ += ["fit", "fit_error", "fit_models"]
 except ImportError:  # pragma: no cover - a build without Ceres
     pass
 
