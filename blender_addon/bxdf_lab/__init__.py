@@ -46,8 +46,8 @@ class BXDFLAB_PT_missing_module_material(BXDFLAB_PT_missing_module):
 
 
 def _full_modules():
-    from . import properties, render_settings, engine, ui, operators
-    return [properties, render_settings, engine, operators, ui]
+    from . import properties, render_settings, fit_report, engine, ui, operators
+    return [properties, render_settings, fit_report, engine, operators, ui]
 
 
 def register():

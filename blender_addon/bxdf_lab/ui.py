@@ -3,7 +3,7 @@ render settings. Stock panels that support BLENDER_RENDER also show for BXDF_LAB
 
 import bpy
 
-from . import api, properties
+from . import api, fit_report, properties
 from .engine import BXDFLAB_RenderEngine
 from .operators.presets import BXDFLAB_MT_presets
 
@@ -47,6 +47,17 @@ def draw_status(layout, material):
         col.label(text=str(exc), icon="ERROR")
 
 
+def draw_fit_report(layout, material):
+    """The last "Fit to Measured File" of this material and its error, flagged once the
+    parameters have been edited (the error then no longer describes them)."""
+    summary = fit_report.summary(material)
+    if not summary:
+        return
+    layout.label(text=summary, icon="INFO")
+    if not fit_report.is_current(material):
+        layout.label(text="Parameters changed since this fit", icon="ERROR")
+
+
 class BXDFLAB_PT_material(bpy.types.Panel):
     bl_label = "BxDF Lab"
     bl_space_type = "PROPERTIES"
@@ -77,9 +88,11 @@ class BXDFLAB_PT_material(bpy.types.Panel):
         row = col.row(align=True)
         row.operator("bxdf_lab.import_material", text="Import JSON", icon="IMPORT")
         row.operator("bxdf_lab.export_material", text="Export JSON", icon="EXPORT")
+        row.operator("bxdf_lab.fit_measured", text="Fit to Measured", icon="GRAPH")
         row = col.row(align=True)
         row.operator("bxdf_lab.set_up_cycles", icon="NODETREE")
         row.operator("bxdf_lab.set_up_povray")
+        draw_fit_report(layout, material)
         for target in ("cycles", "pov"):
             label = getattr(settings, f"{target}_label")
             if label:

@@ -2,11 +2,11 @@
 
 import bpy
 
-from . import (add_lobe_mesh, bake_lobe_texture, compare_renders, list_elements, material_json,
-               presets, set_up_cycles, set_up_povray)
+from . import (add_lobe_mesh, bake_lobe_texture, compare_renders, fit_measured, list_elements,
+               material_json, presets, set_up_cycles, set_up_povray)
 
-_modules = (list_elements, presets, material_json, bake_lobe_texture, add_lobe_mesh, set_up_cycles,
-            set_up_povray, compare_renders)
+_modules = (list_elements, presets, material_json, fit_measured, bake_lobe_texture, add_lobe_mesh,
+            set_up_cycles, set_up_povray, compare_renders)
 
 
 def register():
