@@ -27,21 +27,24 @@ def test_the_model_choices_are_the_bindings_fit_models(bxdf):
     ("ggx", 2, "microfacet", "ggx"),
     ("lafortune", 2, "lafortune", "lafortune2"),
 ])
-def test_the_material_gets_what_bxdf_fit_returns(bxdf, material, model, lobes, registry_name,
-                                                 fit_name):
+def test_the_material_gets_what_bxdf_fit_returns(bxdf, material, capfd, model, lobes,
+                                                 registry_name, fit_name):
     api.assign(material, "lambertian", reflectance=0.3)
     assert _fit(material, filepath=KRYLON, model=model, lobes=lobes) == {"FINISHED"}
+    info = capfd.readouterr().out  # headless Blender prints the operator's reports
     fitted, report = bxdf.fit(KRYLON, model=model, lobes=lobes)
     assert fitted.name == registry_name and report["model"] == fit_name
     name, params = api.describe(material)
     assert name == fitted.name and _same(params, dict(fitted.params))
-    # The material's parameters (stored as Blender's 32-bit floats) fit the data as well.
-    assert bxdf.fit_error(KRYLON, api.make(material)) == pytest.approx(report["error"], rel=1e-6)
+    # The material's parameters are Blender's 32-bit floats: with Lafortune exponents in the
+    # hundreds that moves the error by a few 1e-7.
+    assert bxdf.fit_error(KRYLON, api.make(material)) == pytest.approx(report["error"], abs=1e-6)
     stored = material.bxdf_lab_fit
     assert stored.file == KRYLON and stored.model == fit_name
     assert stored.error == pytest.approx(report["error"], rel=1e-6)
     assert stored.baseline_error == pytest.approx(report["baseline_error"], rel=1e-6)
     assert 0 < stored.error < stored.baseline_error
+    assert f"Info: Fit {fit_name} to krylon_blue.brdf: error {stored.error:.6g}" in info
     assert fit_report.is_current(material)
 
 
