@@ -37,8 +37,7 @@ def _model_items(_self, _context):
 
 
 class BXDFLAB_OT_fit_measured(bpy.types.Operator, ImportHelper):
-    """Fit a model to a measured BRDF file (MERL .binary, Cornell .brdf) and set the active
-    material to the result"""
+    """Fit a model to a measured BRDF (MERL .binary, Cornell .brdf) and set the material to it"""
     bl_idname = "bxdf_lab.fit_measured"
     bl_label = "Fit to Measured File"
     bl_options = {"REGISTER", "UNDO"}
