@@ -16,12 +16,14 @@ RAY_EPSILON = 1e-6
 
 
 def make_model(model: str, params: dict):
-    """An object with .f(wo, wi) -> (N,3), from the core through `bxdf` when it imports."""
+    """The core's model through `bxdf.make` (its .f(wo, wi) -> (N, 3) is the truth here). Imported
+    on first use: the caller puts the built module on sys.path (runner.bxdf_python_paths)."""
     try:
-        import bxdf  # noqa: PLC0415 - optional until the bindings land
-    except ImportError:
-        from . import interim_analytic_models  # INTERIM: goes when `bxdf` is on main
-        return interim_analytic_models.make(model, params)
+        import bxdf  # noqa: PLC0415 - found through the build folder, not at import time
+    except ImportError as exc:
+        raise ImportError("the analytic images need the compiled `bxdf` module: build it "
+                          "(cmake --build build) and put build/python on PYTHONPATH or "
+                          f"BXDF_PYTHONPATH ({exc})") from exc
     return bxdf.make(model, **params)
 
 

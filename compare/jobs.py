@@ -91,7 +91,9 @@ def _run_analytic(job, log_path):
     imageio.write_exr(os.path.join(job["out_dir"], "ANALYTIC.tolerance.exr"),
                       result.geometry_tolerance)
     np.save(os.path.join(job["out_dir"], "ANALYTIC.ids.npy"), result.object_ids)
-    source = "bxdf (core)" if _bxdf_available() else "interim numpy formulas"
+    import bxdf  # noqa: PLC0415 - analytic.render has imported it from python_paths
+
+    source = f"bxdf.make(...).f (core) from {os.path.dirname(bxdf.__file__)}"
     meta = {"scene": job["scene"], "engine": "ANALYTIC", "f_from": source,
             "renders": [{"seed": None, "seconds": seconds, "image": "ANALYTIC.exr"}]}
     with open(os.path.join(job["out_dir"], "ANALYTIC.meta.json"), "w", encoding="utf-8") as fh:
@@ -99,12 +101,6 @@ def _run_analytic(job, log_path):
     with open(log_path, "w", encoding="utf-8") as fh:
         fh.write(f"analytic image in {seconds:.3f} s, f from {source}\n")
     return "ok", ""
-
-
-def _bxdf_available():
-    import importlib.util  # noqa: PLC0415
-
-    return importlib.util.find_spec("bxdf") is not None
 
 
 def _tail(path, lines=6):

@@ -1,8 +1,7 @@
 """Per-material plots with matplotlib: the lobe f*cos(theta_i) in the plane of incidence (polar) for
 three view angles, beside the core's baked hemisphere images of the same lobes
 (bxdf.bake_lobe_polar, equal-area projection), and the directional albedo rho(theta_o)
-(bxdf.bake_albedo_curve). Without the `bxdf` module: the in-plane curves from the interim formulas
-and a midpoint quadrature of f*cos over the hemisphere for the albedo."""
+(bxdf.bake_albedo_curve). Everything comes from the core through the `bxdf` module."""
 from __future__ import annotations
 
 import matplotlib
@@ -24,22 +23,14 @@ def _dirs(theta):
     return np.stack([np.sin(theta), np.zeros_like(theta), np.cos(theta)], axis=-1)
 
 
-def _bxdf_module():
-    try:
-        import bxdf  # noqa: PLC0415 - optional until the bindings land
-    except ImportError:
-        return None
-    return bxdf
-
-
 def lobe_plot(material, path):
+    import bxdf  # noqa: PLC0415 - make_model has found it
+
     model = make_model(material.model, material.params)
-    bxdf = _bxdf_module()
-    baked = bxdf is not None and hasattr(bxdf, "bake_lobe_polar")
     theta_i = np.radians(np.linspace(-89.5, 89.5, 359))
     wi = _dirs(theta_i)
-    fig = plt.figure(figsize=(7.2 if baked else 3.6, 2.6), dpi=90)
-    ax = fig.add_subplot(1, 4 if baked else 1, 1, projection="polar")
+    fig = plt.figure(figsize=(7.2, 2.6), dpi=90)
+    ax = fig.add_subplot(1, 4, 1, projection="polar")
     ax.set_theta_zero_location("N")
     ax.set_thetamin(-90)
     ax.set_thetamax(90)
@@ -53,39 +44,25 @@ def lobe_plot(material, path):
                 ha="center", transform=ax.transAxes)
     ax.tick_params(labelsize=6)
     ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(-0.15, -0.1))
-    if baked:
-        for k, deg in enumerate(VIEW_ANGLES_DEG):
-            image = np.asarray(bxdf.bake_lobe_polar(model, resolution=96, theta_o=deg), float)
-            lum = _luminance(image)
-            panel = fig.add_subplot(1, 4, k + 2)
-            panel.imshow(lum / max(float(lum.max()), 1e-12), cmap="magma", vmin=0.0, vmax=1.0)
-            panel.set_title(f"baked, θo {deg:g}° (max {lum.max():.3g})", fontsize=7)
-            panel.set_xticks([])
-            panel.set_yticks([])
+    for k, deg in enumerate(VIEW_ANGLES_DEG):
+        image = np.asarray(bxdf.bake_lobe_polar(model, resolution=96, theta_o=deg), float)
+        lum = _luminance(image)
+        panel = fig.add_subplot(1, 4, k + 2)
+        panel.imshow(lum / max(float(lum.max()), 1e-12), cmap="magma", vmin=0.0, vmax=1.0)
+        panel.set_title(f"baked, θo {deg:g}° (max {lum.max():.3g})", fontsize=7)
+        panel.set_xticks([])
+        panel.set_yticks([])
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
 
 
 def directional_albedo(model, n_theta=24, n_samples=4096):
-    """(theta_o in radians, rho (n_theta, 3)) at cell centres of [0, 90] degrees."""
-    bxdf = _bxdf_module()
-    if bxdf is not None and hasattr(bxdf, "bake_albedo_curve"):
-        theta_deg, rho = bxdf.bake_albedo_curve(model, n_theta=n_theta, n_samples=n_samples)
-        return np.radians(np.asarray(theta_deg, float)), np.asarray(rho, float)
-    theta_o = np.radians(90.0 * (np.arange(n_theta) + 0.5) / n_theta)
-    wo = _dirs(theta_o)
-    n_theta, n_phi = 96, 192
-    t = (np.arange(n_theta) + 0.5) * (np.pi / 2) / n_theta
-    p = (np.arange(n_phi) + 0.5) * 2 * np.pi / n_phi
-    tt, pp = np.meshgrid(t, p, indexing="ij")
-    wi = np.stack([np.sin(tt) * np.cos(pp), np.sin(tt) * np.sin(pp), np.cos(tt)], -1).reshape(-1, 3)
-    weight = (np.cos(tt) * np.sin(tt)).reshape(-1) * (np.pi / 2 / n_theta) * (2 * np.pi / n_phi)
-    out = []
-    for w in wo:
-        f = np.asarray(model.f(np.broadcast_to(w, wi.shape).copy(), wi), float)
-        out.append((f * weight[:, None]).sum(axis=0))
-    return theta_o, np.array(out)
+    """(theta_o in radians, rho (n_theta, 3)) at cell centres of [0, 90] degrees, from the core."""
+    import bxdf  # noqa: PLC0415 - make_model has found it
+
+    theta_deg, rho = bxdf.bake_albedo_curve(model, n_theta=n_theta, n_samples=n_samples)
+    return np.radians(np.asarray(theta_deg, float)), np.asarray(rho, float)
 
 
 def albedo_plot(material, path):
