@@ -96,18 +96,13 @@ def main():
     meta["materials"] = {}
     for mat_spec in spec.materials():
         owner = next(objects[o.name] for o in spec.objects if o.material.name == mat_spec.name)
-        source = material_setup.setup(materials[mat_spec.name], owner, mat_spec.model,
-                                      mat_spec.params, engine)
+        addon_label = material_setup.setup(materials[mat_spec.name], owner, mat_spec.model,
+                                           mat_spec.params, engine)
         meta["materials"][mat_spec.name] = {
-            "model": mat_spec.model, "params": mat_spec.params, "setup_by": source,
+            "model": mat_spec.model, "params": mat_spec.params, "addon_label": addon_label,
             "renders_as": material_setup.summarize(materials[mat_spec.name], engine)}
 
     scene = bpy.context.scene
-    if engine == "POVRAY_RENDER" and any(m["setup_by"] == "interim"
-                                         for m in meta["materials"].values()):
-        # The add-on's "Set Up POV-Ray Material" calibrates the lights itself.
-        from compare import interim_material_mapping  # INTERIM: goes with that module
-        interim_material_mapping.calibrate_povray_lights(spec)
     if engine == "POVRAY_RENDER":
         basename = f"{job['scene']}_pov"
         meta["settings"] = engine_setup.configure_povray(spec, out_dir, basename, job["threads"])

@@ -1,65 +1,58 @@
-"""Sets a bpy material up for one engine from its (model, params) (runs inside Blender).
-
-BXDF_LAB: bxdf_lab.api.assign. CYCLES / POVRAY_RENDER: the add-on's "Set Up Cycles Material" /
-"Set Up POV-Ray Material" operators when the add-on provides them; until then the interim mapping.
-Either way `summarize` reads back what the engine will actually render, which the report prints
-beside every approximate pairing."""
+"""Sets a bpy material up for one engine from its (model, params) (runs inside Blender), only
+through the bxdf_lab add-on: `bxdf_lab.api.assign`, then for CYCLES / POVRAY_RENDER the add-on's
+"Set Up Cycles Material" / "Set Up POV-Ray Material" operator (which owns the mapping, and for
+POV-Ray the light calibration). `summarize` reads back what the engine will actually render, which
+the report prints beside every approximate pairing."""
 from __future__ import annotations
 
 import bpy
 
-from . import interim_material_mapping   # INTERIM: goes when the add-on's operators land
-
 OPERATOR_LABELS = {"CYCLES": "Set Up Cycles Material", "POVRAY_RENDER": "Set Up POV-Ray Material"}
+ADDON_LABEL_FIELDS = {"CYCLES": "cycles_label", "POVRAY_RENDER": "pov_label"}
 
 
 def addon_api():
-    """bxdf_lab.api if the add-on is enabled, else None."""
+    """bxdf_lab.api; RuntimeError when the add-on (or its compiled module) is not registered."""
     try:
         import bxdf_lab.api as api  # noqa: PLC0415 (only inside Blender with the add-on)
-    except ImportError:
-        return None
-    return api if hasattr(bpy.types.Material, "bxdf_lab") else None
+    except ImportError as exc:
+        raise RuntimeError(f"the bxdf_lab add-on is not importable: {exc}") from exc
+    if not hasattr(bpy.types.Material, "bxdf_lab"):
+        raise RuntimeError("the bxdf_lab add-on is not registered (material.bxdf_lab missing: "
+                           "does the compiled `bxdf` module import inside Blender?)")
+    return api
 
 
 def addon_operator(label):
     """The bxdf_lab operator whose label is `label`, found by label so that its idname is free."""
     namespace = getattr(bpy.ops, "bxdf_lab", None)
-    if namespace is None:
-        return None
-    for name in dir(namespace):
-        op = getattr(namespace, name)
-        try:
-            if op.get_rna_type().name == label:
-                return op
-        except (AttributeError, KeyError, RuntimeError):
-            continue
-    return None
+    if namespace is not None:
+        for name in dir(namespace):
+            op = getattr(namespace, name)
+            try:
+                if op.get_rna_type().name == label:
+                    return op
+            except (AttributeError, KeyError, RuntimeError):
+                continue
+    raise RuntimeError(f"the bxdf_lab add-on has no operator \"{label}\"")
 
 
 def setup(material, obj, model, params, engine) -> str:
-    """Returns which code did the set-up ("add-on" or "interim")."""
+    """Assigns the model; for CYCLES / POVRAY_RENDER runs the add-on's set-up operator on `obj`'s
+    `material`. Returns the add-on's label for the engine ("exact" / "approximate"; "exact" for
+    BXDF_LAB, which renders the model itself)."""
     api = addon_api()
+    api.assign(material, model, **params)
     if engine == "BXDF_LAB":
-        if api is None:
-            raise RuntimeError("bxdf_lab add-on (or its bxdf module) is not available")
-        api.assign(material, model, **params)
-        return "add-on"
-    op = addon_operator(OPERATOR_LABELS[engine]) if api is not None else None
-    if op is not None:
-        api.assign(material, model, **params)
-        with bpy.context.temp_override(object=obj, active_object=obj, material=material,
-                                       selected_objects=[obj]):
-            result = op()
-        if "FINISHED" not in result:
-            raise RuntimeError(f"{OPERATOR_LABELS[engine]} returned {result} for "
-                               f"material '{material.name}'")
-        return "add-on"
-    if engine == "CYCLES":
-        interim_material_mapping.setup_cycles(material, model, params)
-    else:
-        interim_material_mapping.setup_povray(material, model, params)
-    return "interim"
+        return "exact"
+    op = addon_operator(OPERATOR_LABELS[engine])
+    with bpy.context.temp_override(object=obj, active_object=obj, material=material,
+                                   selected_objects=[obj]):
+        result = op()
+    if "FINISHED" not in result:
+        raise RuntimeError(f"{OPERATOR_LABELS[engine]} returned {result} for "
+                           f"material '{material.name}'")
+    return getattr(material.bxdf_lab, ADDON_LABEL_FIELDS[engine])
 
 
 def summarize(material, engine) -> str:

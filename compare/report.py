@@ -1,6 +1,6 @@
 """Turns the renders of one run into out/<run>/summary.json and out/<run>/index.html (a static page
 with relative links only): images side by side, heat maps, the table of figures per pairing,
-render times and speed against Cycles, and lobe / albedo plots per material."""
+render times against Cycles (BXDF_LAB/CYCLES per scene), and lobe / albedo plots per material."""
 from __future__ import annotations
 
 import html
@@ -98,10 +98,11 @@ def analyse(run_dir, spec, results):
             truth = analytic_truth
         engines[engine] = entry
 
+    # Render seconds (both seeds, the same samples and threads) over Cycles': below 1 is faster.
     cycles_seconds = engines.get("CYCLES", {}).get("seconds")
     for entry in engines.values():
         if cycles_seconds and entry.get("seconds"):
-            entry["speed_vs_cycles"] = cycles_seconds / entry["seconds"]
+            entry["time_vs_cycles"] = entry["seconds"] / cycles_seconds
 
     shapes = {img.shape for img in images.values()}
     mask = ~metrics.edge_mask(truth["ids"]) if truth is not None else None
@@ -134,6 +135,15 @@ def analyse(run_dir, spec, results):
                      "heatmap": os.path.relpath(heat, run_dir),
                      "edge_pixels_excluded": int((~mask).sum()) if mask is not None else 0,
                      "saturated_pixels_excluded": int(saturated.sum())})
+        # The add-on's own label for each material's mapping (set-up operators); an exact pairing
+        # whose mapping the add-on calls approximate is a contradiction the page shows.
+        addon_labels = {e: {m: v.get("addon_label")
+                            for m, v in engines[e].get("materials", {}).items()}
+                        for e in (a, b) if engines[e].get("materials")}
+        item["addon_labels"] = addon_labels
+        if label == "exact" and any(v != "exact" for labels in addon_labels.values()
+                                    for v in labels.values()):
+            item["error"] = f"the add-on labels a mapping of this exact pairing: {addon_labels}"
         if label == "approximate":
             item["approximations"] = pairings.approximations(spec, a, b)
             item["mapping"] = {e: {m: v.get("renders_as", "")
@@ -233,7 +243,7 @@ def render_html(summary):
              "16-bit PNG clips at 1. Data: "
              "<a href=\"summary.json\">summary.json</a>.</p>",
              _run_settings(summary["settings"]),
-             _overview(summary)]
+             _overview(summary), _render_times(summary)]
     for scene in summary["scenes"]:
         parts.append(_scene_html(scene, summary["materials"]))
     parts.append("</body></html>")
@@ -248,7 +258,27 @@ def _run_settings(settings):
     return (f"<p class=\"note\">Wall time {_num(wall, '{:.0f}')} s on {_e(where)}, "
             f"{_e(settings['threads_per_job'] or 'all')} thread(s) per render; spp "
             f"{_e(settings['spp'] or 'per scene')}, resolution {_e(resolution)}. "
-            "Speed vs Cycles = Cycles' render seconds / the engine's (above 1: faster).</p>")
+            "Time / Cycles = the engine's render seconds (both half-sample renders, through "
+            "Blender's render operator, scene export included) / Cycles' (below 1: faster).</p>")
+
+
+def _render_times(summary):
+    """Per scene: Cycles' and BXDF_LAB's render seconds and their ratio (the speed finding)."""
+    rows = ["<h2>Render time against Cycles</h2><table><tr><th class=\"l\">scene</th>"
+            "<th>samples</th><th>CYCLES s</th><th>BXDF_LAB s</th><th>BXDF_LAB / CYCLES</th></tr>"]
+    for scene in summary["scenes"]:
+        engines = scene["engines"]
+        cycles, lab = engines.get("CYCLES", {}), engines.get("BXDF_LAB", {})
+        if cycles.get("seconds") is None and lab.get("seconds") is None:
+            continue
+        samples = (lab.get("settings") or cycles.get("settings") or {}).get("samples_total")
+        rows.append(f"<tr><td class=\"l\"><a href=\"#{_e(scene['name'])}\">{_e(scene['name'])}"
+                    f"</a></td><td>{_num(samples, '{}')}</td>"
+                    f"<td>{_num(cycles.get('seconds'), '{:.2f}')}</td>"
+                    f"<td>{_num(lab.get('seconds'), '{:.2f}')}</td>"
+                    f"<td>{_num(lab.get('time_vs_cycles'), '{:.2f}')}</td></tr>")
+    rows.append("</table>")
+    return "\n".join(rows)
 
 
 def _overview(summary):
@@ -280,9 +310,9 @@ def _pair_row_short(scene_name, p):
 def _scene_html(scene, materials):
     out = [f"<h2 id=\"{_e(scene['name'])}\">{_e(scene['name'])}</h2>",
            f"<p>{_e(scene['description'])}</p>"]
-    # Engines: status, times, speed.
+    # Engines: status, times against Cycles.
     out.append("<table><tr><th class=\"l\">engine</th><th class=\"l\">status</th>"
-               "<th>render s</th><th>wall s</th><th>speed vs Cycles</th>"
+               "<th>render s</th><th>wall s</th><th>time / Cycles</th>"
                "<th class=\"l\">settings</th><th class=\"l\">log</th></tr>")
     for engine, e in scene["engines"].items():
         status_cls = "status-failed" if e["status"] != "ok" else ""
@@ -290,7 +320,7 @@ def _scene_html(scene, materials):
         settings = _e(json.dumps(e.get("settings", {}))) if e.get("settings") else ""
         if e.get("f_from"):
             settings = _e("f from " + e["f_from"])
-        speed = _num(e.get("speed_vs_cycles"), "{:.2f}×")
+        speed = _num(e.get("time_vs_cycles"), "{:.2f}")
         out.append(f"<tr><td class=\"l\">{_e(engine)}</td><td class=\"l {status_cls}\">"
                    f"{_e(e['status'])}</td><td>{_num(e.get('seconds'), '{:.2f}')}</td>"
                    f"<td>{_num(e.get('wall_seconds'), '{:.1f}')}</td><td>{speed}</td>"

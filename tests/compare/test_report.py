@@ -45,6 +45,8 @@ def test_summary_json_schema(main_run):
         for engine in entry["engines"].values():
             assert engine["status"] in ("ok", "failed")
             assert "seconds" in engine and "image" in engine
+        lab, cycles = entry["engines"]["BXDF_LAB"], entry["engines"]["CYCLES"]
+        assert abs(lab["time_vs_cycles"] * cycles["seconds"] - lab["seconds"]) < 1e-9
         assert entry["pairings"]
         for p in entry["pairings"]:
             assert {"a", "b", "label", "rmse", "z_fail_fraction", "pass"} <= set(p)
@@ -80,3 +82,4 @@ def test_index_html_is_well_formed_and_every_image_exists(main_run):
         for p in entry["pairings"]:
             assert p["heatmap"] in checker.images
     assert any(src.startswith("report/materials/") for src in checker.images)
+    assert "Render time against Cycles" in page and "BXDF_LAB / CYCLES" in page
