@@ -243,7 +243,7 @@ def render_html(summary):
              "16-bit PNG clips at 1. Data: "
              "<a href=\"summary.json\">summary.json</a>.</p>",
              _run_settings(summary["settings"]),
-             _overview(summary), _render_times(summary)]
+             _render_times(summary), _overview(summary)]
     for scene in summary["scenes"]:
         parts.append(_scene_html(scene, summary["materials"]))
     parts.append("</body></html>")

@@ -11,7 +11,7 @@ from harness_helpers import MAIN_SCENES, WRONG_MATERIAL, run_compare  # noqa: E4
 
 @pytest.fixture(scope="session")
 def main_run(tmp_path_factory):
-    """Four small scenes at 32x32, 8 spp, every engine, one material deliberately wrong."""
+    """Six small scenes at 32x32, 8 spp, every engine, one material deliberately wrong."""
     out = tmp_path_factory.mktemp("main")
     return run_compare(out, "--scenes", *MAIN_SCENES, "--res", "32", "32", "--spp", "8",
                        "--override", WRONG_MATERIAL)

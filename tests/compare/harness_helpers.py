@@ -19,7 +19,8 @@ PYTHON = "/usr/bin/python3"
 # The deliberately wrong material: POV-Ray renders the sun sphere with albedo 0.68 instead of 0.7
 # (3% too dark: the z-test must see an error that small).
 WRONG_MATERIAL = "POVRAY_RENDER:lambert_grey:reflectance=[0.68,0.68,0.68]"
-MAIN_SCENES = ["lit_lambertian", "lit_cycles_glossy_ggx", "lit_oren_nayar", "sun_sphere"]
+MAIN_SCENES = ["lit_lambertian", "lit_cycles_oren_nayar", "lit_cycles_glossy_ggx",
+               "lit_cycles_glossy_beckmann", "lit_oren_nayar", "sun_sphere"]
 
 
 def run_compare(out_dir, *args, env=None, timeout=600):

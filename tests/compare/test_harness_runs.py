@@ -34,9 +34,11 @@ def test_exact_pairings_pass_their_z_test(main_run):
             checked.add((entry["name"], p["a"], p["b"]))
     # BXDF_LAB against the closed form for every model (point and sun light, direct light only),
     # and against Cycles where Cycles has the same formula.
-    for name in ("lit_lambertian", "lit_cycles_glossy_ggx", "lit_oren_nayar", "sun_sphere"):
+    with_cycles = ("lit_lambertian", "lit_cycles_oren_nayar", "lit_cycles_glossy_ggx",
+                   "lit_cycles_glossy_beckmann", "sun_sphere")
+    for name in with_cycles + ("lit_oren_nayar",):
         assert (name, "BXDF_LAB", "ANALYTIC") in checked
-    for name in ("lit_lambertian", "lit_cycles_glossy_ggx", "sun_sphere"):
+    for name in with_cycles:
         assert (name, "BXDF_LAB", "CYCLES") in checked
     assert ("lit_lambertian", "POVRAY_RENDER", "ANALYTIC") in checked
     lam = scene(summary, "lit_lambertian")
