@@ -5,7 +5,7 @@
 #pragma once
 
 #include "bxdf/bxdf.h"
-#include "bxdf/sampling.h"
+#include "bxdf/cosine_reflection.h"
 
 namespace bxdf {
 
@@ -30,18 +30,9 @@ class CyclesOrenNayar final : public BxDFImpl<CyclesOrenNayar> {
     return color_ * std::max(0.0f, a_ + b_ * s_over_t);
   }
   BxDFSample sample(const Vec3& wo, Point2 u) const {
-    BxDFSample s;
-    if (wo.z == 0.0f) return s;
-    s.wi = sample_cosine_hemisphere(u);
-    if (wo.z < 0.0f) s.wi.z = -s.wi.z;
-    s.pdf = cosine_hemisphere_pdf(std::fabs(s.wi.z));
-    s.f = eval(wo, s.wi);
-    s.flags = kReflection | kDiffuse;
-    return s;
+    return sample_cosine_reflection(*this, wo, u);
   }
-  float density(const Vec3& wo, const Vec3& wi) const {
-    return same_hemisphere(wo, wi) ? cosine_hemisphere_pdf(std::fabs(wi.z)) : 0.0f;
-  }
+  float density(const Vec3& wo, const Vec3& wi) const { return cosine_reflection_pdf(wo, wi); }
 
   float a() const { return a_; }
   float b() const { return b_; }

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "bxdf/bxdf.h"
-#include "bxdf/sampling.h"
+#include "bxdf/cosine_reflection.h"
 
 namespace bxdf {
 
@@ -15,18 +15,9 @@ class Lambertian final : public BxDFImpl<Lambertian> {
     return same_hemisphere(wo, wi) ? r_over_pi_ : RGB(0.0f);
   }
   BxDFSample sample(const Vec3& wo, Point2 u) const {
-    BxDFSample s;
-    if (wo.z == 0.0f) return s;
-    s.wi = sample_cosine_hemisphere(u);
-    if (wo.z < 0.0f) s.wi.z = -s.wi.z;
-    s.pdf = cosine_hemisphere_pdf(std::fabs(s.wi.z));
-    s.f = r_over_pi_;
-    s.flags = kReflection | kDiffuse;
-    return s;
+    return sample_cosine_reflection(*this, wo, u);
   }
-  float density(const Vec3& wo, const Vec3& wi) const {
-    return same_hemisphere(wo, wi) ? cosine_hemisphere_pdf(std::fabs(wi.z)) : 0.0f;
-  }
+  float density(const Vec3& wo, const Vec3& wi) const { return cosine_reflection_pdf(wo, wi); }
 
   RGB rho_hd(const Vec3&, int, uint64_t) const override { return r_; }
   RGB rho_hh(int, uint64_t) const override { return r_; }
