@@ -3,10 +3,15 @@
 // batch (structure-of-arrays) API with one virtual call per batch.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include "bxdf/frame.h"
 #include "bxdf/params.h"
@@ -94,12 +99,33 @@ class BxDF {
 
 std::string flags_to_string(uint32_t flags);  // "reflection|glossy"
 
+// The direction half of a sample: wi (any length) and the sampled lobe; ok = false for none.
+struct DirectionSample {
+  Vec3 wi;
+  uint32_t flags = 0;
+  bool ok = false;
+};
+
 // Derived implements, inline and assuming unit-length directions:
 //   RGB eval(const Vec3& wo, const Vec3& wi) const;
 //   BxDFSample sample(const Vec3& wo, Point2 u) const;
 //   float density(const Vec3& wo, const Vec3& wi) const;
 // BxDFImpl normalises inputs, refuses degenerate ones and scrubs every output, so a kernel
 // only has to be right for well-formed input.
+//
+// A model whose sample's f and pdf are exactly eval(wo, wi) and density(wo, wi) of the drawn
+// direction may also provide
+//   DirectionSample sample_direction(const Vec3& wo, Point2 u) const;
+// Then sample_f (scalar and batch) draws the direction with it and evaluates f and pdf with the
+// eval and density kernels, which in a batch is a second pass that vectorises (the drawing,
+// with its warps and trigonometry, rarely does).
+template <class T, class = void>
+struct has_sample_direction : std::false_type {};
+template <class T>
+struct has_sample_direction<
+    T, std::void_t<decltype(std::declval<const T&>().sample_direction(Vec3(), Point2()))>>
+    : std::true_type {};
+
 template <class Derived>
 class BxDFImpl : public BxDF {
  public:
@@ -109,34 +135,188 @@ class BxDFImpl : public BxDF {
   BxDFSample sample_f(const Vec3& wo, Point2 u) const final { return sample_one(wo, u); }
   float pdf(const Vec3& wo, const Vec3& wi) const final { return pdf_one(wo, wi); }
 
+  // The batch forms work in blocks: a first pass normalises the directions with selects
+  // instead of early returns (a refused direction becomes +z and a cleared `ok` flag), then a
+  // kernel pass with no exits runs the model on every element and zeroes the refused ones.
+  // Both passes are loops the compiler can vectorise when the model's kernel is branch-free;
+  // the arithmetic is that of f_one/pdf_one/sample_one, so the results are the same bits.
   void f_batch(size_t n, DirectionsIn wo, DirectionsIn wi, RGBOut out) const final {
-    for (size_t i = 0; i < n; ++i) {
-      const RGB v = f_one(Vec3(wo.x[i], wo.y[i], wo.z[i]), Vec3(wi.x[i], wi.y[i], wi.z[i]));
-      out.r[i] = v.r;
-      out.g[i] = v.g;
-      out.b[i] = v.b;
+    derived().with_eval_kernel([&](const auto& kernel) { f_loop(kernel, n, wo, wi, out); });
+  }
+  // A model whose f has loop-invariant choices (an enum parameter) hides this with one that
+  // calls fn with a kernel specialised for them; by default the kernel is the model's eval.
+  template <class Fn>
+  void with_eval_kernel(Fn&& fn) const {
+    fn(derived());
+  }
+  template <class Kernel>
+  static void f_loop(const Kernel& kernel, size_t n, DirectionsIn wo, DirectionsIn wi, RGBOut out) {
+    Block a, b;
+    for (size_t start = 0; start < n; start += kBlock) {
+      const size_t m = std::min(kBlock, n - start);
+      a.normalize(m, wo, start);
+      b.normalize(m, wi, start);
+      float* __restrict r = out.r + start;
+      float* __restrict g = out.g + start;
+      float* __restrict bl = out.b + start;
+      for (size_t i = 0; i < m; ++i) {
+        const RGB v = kernel.eval(a.at(i), b.at(i));
+        const bool ok = (a.ok[i] & b.ok[i]) != 0;
+        r[i] = ok ? sanitize_nonnegative(v.r) : 0.0f;
+        g[i] = ok ? sanitize_nonnegative(v.g) : 0.0f;
+        bl[i] = ok ? sanitize_nonnegative(v.b) : 0.0f;
+      }
     }
   }
   void sample_f_batch(size_t n, DirectionsIn wo, const float* u1, const float* u2,
                       DirectionsOut wi, RGBOut f, float* pdf) const final {
-    for (size_t i = 0; i < n; ++i) {
-      const BxDFSample s = sample_one(Vec3(wo.x[i], wo.y[i], wo.z[i]), Point2(u1[i], u2[i]));
-      wi.x[i] = s.wi.x;
-      wi.y[i] = s.wi.y;
-      wi.z[i] = s.wi.z;
-      f.r[i] = s.f.r;
-      f.g[i] = s.f.g;
-      f.b[i] = s.f.b;
-      pdf[i] = s.pdf;
+    if constexpr (has_sample_direction<Derived>::value) {
+      derived().with_eval_kernel([&](const auto& kernel) {
+        sample_direction_loop(kernel, n, wo, u1, u2, wi, f, pdf);
+      });
+      return;
+    }
+    Block a;
+    for (size_t start = 0; start < n; start += kBlock) {
+      const size_t m = std::min(kBlock, n - start);
+      a.normalize(m, wo, start);
+      for (size_t i = 0; i < m; ++i) {
+        const size_t k = start + i;
+        const BxDFSample s = sample_kernel(a.at(i), clamp_u(Point2(u1[k], u2[k])));
+        const bool ok = a.ok[i] & s.valid();
+        wi.x[k] = ok ? s.wi.x : 0.0f;
+        wi.y[k] = ok ? s.wi.y : 0.0f;
+        wi.z[k] = ok ? s.wi.z : 0.0f;
+        f.r[k] = ok ? s.f.r : 0.0f;
+        f.g[k] = ok ? s.f.g : 0.0f;
+        f.b[k] = ok ? s.f.b : 0.0f;
+        pdf[k] = ok ? s.pdf : 0.0f;
+      }
     }
   }
   void pdf_batch(size_t n, DirectionsIn wo, DirectionsIn wi, float* out) const final {
-    for (size_t i = 0; i < n; ++i)
-      out[i] = pdf_one(Vec3(wo.x[i], wo.y[i], wo.z[i]), Vec3(wi.x[i], wi.y[i], wi.z[i]));
+    Block a, b;
+    for (size_t start = 0; start < n; start += kBlock) {
+      const size_t m = std::min(kBlock, n - start);
+      a.normalize(m, wo, start);
+      b.normalize(m, wi, start);
+      float* __restrict p = out + start;
+      for (size_t i = 0; i < m; ++i) {
+        const float v = derived().density(a.at(i), b.at(i));
+        p[i] = (a.ok[i] & b.ok[i]) ? sanitize_nonnegative(v) : 0.0f;
+      }
+    }
   }
 
  private:
   const Derived& derived() const { return static_cast<const Derived&>(*this); }
+
+  static constexpr size_t kBlock = 64;
+
+  // A block of directions normalised as normalize_direction() does it, written with selects:
+  // ok[i] says whether it succeeded; where it did not, the direction is +z (any unit vector
+  // would do: the kernels run on it, and the result is discarded).
+  struct Block {
+    alignas(64) float x[kBlock], y[kBlock], z[kBlock];
+    alignas(64) int32_t ok[kBlock];  // 0 or 1, as wide as a float: mask and data vectorise together
+    BXDF_KERNEL void normalize(size_t m, DirectionsIn d, size_t start) {
+      const float* __restrict dx = d.x + start;
+      const float* __restrict dy = d.y + start;
+      const float* __restrict dz = d.z + start;
+      for (size_t i = 0; i < m; ++i) {
+        const float vx = dx[i], vy = dy[i], vz = dz[i];
+        const float l2 = vx * vx + vy * vy + vz * vz;
+        const bool good = l2 > 1e-30f && l2 <= std::numeric_limits<float>::max();
+        const float inv = 1.0f / std::sqrt(good ? l2 : 1.0f);
+        x[i] = good ? vx * inv : 0.0f;
+        y[i] = good ? vy * inv : 0.0f;
+        z[i] = good ? vz * inv : 1.0f;
+        ok[i] = good;
+      }
+    }
+    Vec3 at(size_t i) const { return {x[i], y[i], z[i]}; }
+  };
+
+  // Keeps u in [0, 1): NaN or out-of-range numbers would otherwise leak into the warps.
+  BXDF_KERNEL static Point2 clamp_u(Point2 u) {
+    constexpr float kOneBelowOne = 0x1.fffffep-1f;
+    const auto c = [](float v) {
+      return v >= 0.0f && v < 1.0f ? v : (v >= 1.0f ? kOneBelowOne : 0.0f);
+    };
+    return {c(u.x), c(u.y)};
+  }
+
+  // sample_f_batch for a model with sample_direction: per block, the directions are drawn in
+  // one loop and f and pdf evaluated in a second, branch-free one.
+  template <class Kernel>
+  void sample_direction_loop(const Kernel& kernel, size_t n, DirectionsIn wo, const float* u1,
+                             const float* u2, DirectionsOut wi, RGBOut f, float* pdf) const {
+    Block a, b;
+    for (size_t start = 0; start < n; start += kBlock) {
+      const size_t m = std::min(kBlock, n - start);
+      a.normalize(m, wo, start);
+      for (size_t i = 0; i < m; ++i) {
+        const DirectionSample d =
+            derived().sample_direction(a.at(i), clamp_u(Point2(u1[start + i], u2[start + i])));
+        b.x[i] = d.wi.x;
+        b.y[i] = d.wi.y;
+        b.z[i] = d.wi.z;
+        b.ok[i] = a.ok[i] & d.ok;
+      }
+      for (size_t i = 0; i < m; ++i) {
+        const size_t k = start + i;
+        const Vec3 o = a.at(i), w = b.at(i);
+        BxDFSample s;
+        s.wi = w;
+        s.f = kernel.eval(o, w);
+        const float density = derived().density(o, w);
+        s.pdf = b.ok[i] != 0 ? density : 0.0f;
+        s = guard_sample(s);
+        wi.x[k] = s.wi.x;
+        wi.y[k] = s.wi.y;
+        wi.z[k] = s.wi.z;
+        f.r[k] = s.f.r;
+        f.g[k] = s.f.g;
+        f.b[k] = s.f.b;
+        pdf[k] = s.pdf;
+      }
+    }
+  }
+
+  // The model's sample for a unit wo and u in [0, 1), with the guards of the scalar API.
+  BxDFSample sample_kernel(const Vec3& wo, Point2 u) const {
+    if constexpr (has_sample_direction<Derived>::value) {
+      const DirectionSample d = derived().sample_direction(wo, u);
+      BxDFSample s;
+      s.wi = d.wi;
+      s.f = derived().eval(wo, d.wi);
+      s.pdf = d.ok ? derived().density(wo, d.wi) : 0.0f;
+      s.flags = d.flags;
+      return guard_sample(s);
+    } else {
+      return guard_sample(derived().sample(wo, u));
+    }
+  }
+  // A sample is kept only if its pdf and f are finite and non-negative and wi normalises
+  // (pdf = 0 marks a refused one, with all of it zero); wi is returned normalised.
+  BXDF_KERNEL static BxDFSample guard_sample(const BxDFSample& s) {
+    const float l2 = length_squared(s.wi);
+    const bool wi_ok = l2 > 1e-30f && l2 <= std::numeric_limits<float>::max();
+    const float inv = 1.0f / std::sqrt(wi_ok ? l2 : 1.0f);
+    // One condition per select (GCC 12 does not if-convert this as one && chain).
+    float pdf = finite_nonnegative(s.pdf) ? s.pdf : 0.0f;
+    pdf = wi_ok ? pdf : 0.0f;
+    pdf = finite_nonnegative(s.f.r) ? pdf : 0.0f;
+    pdf = finite_nonnegative(s.f.g) ? pdf : 0.0f;
+    pdf = finite_nonnegative(s.f.b) ? pdf : 0.0f;
+    const bool ok = pdf > 0.0f;
+    BxDFSample out;
+    out.wi = Vec3(ok ? s.wi.x * inv : 0.0f, ok ? s.wi.y * inv : 0.0f, ok ? s.wi.z * inv : 0.0f);
+    out.f = RGB(ok ? s.f.r : 0.0f, ok ? s.f.g : 0.0f, ok ? s.f.b : 0.0f);
+    out.pdf = ok ? s.pdf : 0.0f;
+    out.flags = ok ? s.flags : 0u;
+    return out;
+  }
 
   inline RGB f_one(Vec3 wo, Vec3 wi) const {
     if (!normalize_direction(wo) || !normalize_direction(wi)) return RGB(0.0f);
@@ -147,16 +327,8 @@ class BxDFImpl : public BxDF {
     return sanitize_nonnegative(derived().density(wo, wi));
   }
   inline BxDFSample sample_one(Vec3 wo, Point2 u) const {
-    BxDFSample none;
-    if (!normalize_direction(wo)) return none;
-    // Keep u in [0, 1): NaN or out-of-range numbers would otherwise leak into the warps.
-    if (!(u.x >= 0.0f && u.x < 1.0f)) u.x = u.x >= 1.0f ? 0x1.fffffep-1f : 0.0f;
-    if (!(u.y >= 0.0f && u.y < 1.0f)) u.y = u.y >= 1.0f ? 0x1.fffffep-1f : 0.0f;
-    BxDFSample s = derived().sample(wo, u);
-    if (!(s.pdf > 0.0f) || !finite_nonnegative(s.pdf) || !normalize_direction(s.wi) ||
-        !finite_nonnegative(s.f))
-      return none;
-    return s;
+    if (!normalize_direction(wo)) return BxDFSample();
+    return sample_kernel(wo, clamp_u(u));
   }
 };
 

@@ -32,7 +32,7 @@ struct RGB {
 };
 inline RGB operator*(float s, const RGB& c) { return c * s; }
 inline RGB sqrt(const RGB& c) { return {std::sqrt(c.r), std::sqrt(c.g), std::sqrt(c.b)}; }
-inline RGB sanitize_nonnegative(const RGB& c) {
+BXDF_KERNEL RGB sanitize_nonnegative(const RGB& c) {
   return {sanitize_nonnegative(c.r), sanitize_nonnegative(c.g), sanitize_nonnegative(c.b)};
 }
 inline bool finite_nonnegative(const RGB& c) {

@@ -14,19 +14,22 @@ struct Beckmann {
   Beckmann() = default;
   Beckmann(float ax, float ay) : alpha_x(clamp_alpha(ax)), alpha_y(clamp_alpha(ay)) {}
 
-  float D(const Vec3& wh) const {
-    if (wh.z <= 0.0f) return 0.0f;
+  BXDF_KERNEL float D(const Vec3& wh) const {
     // tan²θ(cos²φ/αx² + sin²φ/αy²) = (x²/αx² + y²/αy²)/z².
     const float sx = wh.x / alpha_x, sy = wh.y / alpha_y;
     const float z2 = wh.z * wh.z;
     const float e = (sx * sx + sy * sy) / z2;
     // exp(−80) ≈ 2e−35: past this D is far below anything a renderer adds up, and near the
     // horizon the quotient would be a denormal divided by a denormal.
-    if (!(e < 80.0f)) return 0.0f;
-    return std::exp(-e) / (kPi * alpha_x * alpha_y * z2 * z2);
+    // exp_poly rather than std::exp so that batch loops over D vectorise; its argument is kept
+    // in range (e >= 80 and NaN become 80, whose result is not used).
+    const float e_in_range = e < 80.0f ? e : 80.0f;
+    const float d = exp_poly(-e_in_range) / (kPi * alpha_x * alpha_y * z2 * z2);
+    const float d_in_range = e < 80.0f ? d : 0.0f;
+    return wh.z > 0.0f ? d_in_range : 0.0f;
   }
-  float lambda(const Vec3& w) const { return beckmann_lambda(w, alpha_x, alpha_y); }
-  float G1(const Vec3& w) const { return 1.0f / (1.0f + lambda(w)); }
+  BXDF_KERNEL float lambda(const Vec3& w) const { return beckmann_lambda(w, alpha_x, alpha_y); }
+  BXDF_KERNEL float G1(const Vec3& w) const { return 1.0f / (1.0f + lambda(w)); }
 
   Vec3 sample_wh(const Vec3& /*wo*/, Point2 u) const {
     // φ: the marginal of D cos θ is ∝ 1/(cos²φ/αx² + sin²φ/αy²), which the map
@@ -42,7 +45,7 @@ struct Beckmann {
     const float sin_t = safe_sqrt(1.0f - cos_t * cos_t);
     return {sin_t * cos_phi, sin_t * sin_phi, cos_t};
   }
-  float pdf_wh(const Vec3& /*wo*/, const Vec3& wh) const { return D(wh) * std::max(0.0f, wh.z); }
+  BXDF_KERNEL float pdf_wh(const Vec3& /*wo*/, const Vec3& wh) const { return D(wh) * std::max(0.0f, wh.z); }
 };
 
 }  // namespace microfacet

@@ -16,15 +16,15 @@ struct GGX {
   GGX() = default;
   GGX(float ax, float ay) : alpha_x(clamp_alpha(ax)), alpha_y(clamp_alpha(ay)) {}
 
-  float D(const Vec3& wh) const {
-    if (wh.z <= 0.0f) return 0.0f;
+  BXDF_KERNEL float D(const Vec3& wh) const {
     // cos⁴θ (1 + tan²θ(...))² = (z² + x²/αx² + y²/αy²)² for a unit vector.
     const float sx = wh.x / alpha_x, sy = wh.y / alpha_y;
     const float s = wh.z * wh.z + sx * sx + sy * sy;
-    return 1.0f / (kPi * alpha_x * alpha_y * s * s);
+    const float d = 1.0f / (kPi * alpha_x * alpha_y * s * s);
+    return wh.z <= 0.0f ? 0.0f : d;  // a select, not a branch: batch loops vectorise
   }
-  float lambda(const Vec3& w) const { return ggx_lambda(w, alpha_x, alpha_y); }
-  float G1(const Vec3& w) const { return 1.0f / (1.0f + lambda(w)); }
+  BXDF_KERNEL float lambda(const Vec3& w) const { return ggx_lambda(w, alpha_x, alpha_y); }
+  BXDF_KERNEL float G1(const Vec3& w) const { return 1.0f / (1.0f + lambda(w)); }
 
   Vec3 sample_wh(const Vec3& wo, Point2 u) const {
     // Stretch wo to the configuration where the roughness is 1 (a hemisphere of normals).
@@ -48,9 +48,9 @@ struct GGX {
     normalize_direction(wh);
     return wh;
   }
-  float pdf_wh(const Vec3& wo, const Vec3& wh) const {
-    if (wo.z <= 0.0f) return 0.0f;
-    return D(wh) * G1(wo) * std::max(0.0f, dot(wo, wh)) / wo.z;
+  BXDF_KERNEL float pdf_wh(const Vec3& wo, const Vec3& wh) const {
+    const float pdf = D(wh) * G1(wo) * std::max(0.0f, dot(wo, wh)) / wo.z;
+    return wo.z <= 0.0f ? 0.0f : pdf;
   }
 };
 

@@ -18,8 +18,8 @@ class OrenNayar final : public BxDFImpl<OrenNayar> {
     b_ = 0.45f * sigma2 / (sigma2 + 0.09f);
   }
 
+  // Written with a select instead of an early return, so that the batch loop vectorises.
   RGB eval(const Vec3& wo, const Vec3& wi) const {
-    if (!same_hemisphere(wo, wi)) return RGB(0.0f);
     // With unit directions, cos(φi − φo) sin θi sin θo = wi.x wo.x + wi.y wo.y and
     // sin α sin β = sin θi sin θo, so max(0, cos(φi − φo)) sin α tan β reduces to
     // max(0, wi.x wo.x + wi.y wo.y) / cos β, where β, the angle closer to the normal, has the
@@ -27,7 +27,10 @@ class OrenNayar final : public BxDFImpl<OrenNayar> {
     // the term vanishes) and at grazing (cos β > 0 whenever both are in one hemisphere).
     const float cos_phi_sin_sin = std::max(0.0f, wi.x * wo.x + wi.y * wo.y);
     const float cos_beta = std::max(std::fabs(wi.z), std::fabs(wo.z));
-    return r_over_pi_ * (a_ + b_ * cos_phi_sin_sin / cos_beta);
+    const float scale = a_ + b_ * cos_phi_sin_sin / cos_beta;  // NaN for 0/0: not selected
+    const RGB v = r_over_pi_ * scale;
+    const bool same = same_hemisphere(wo, wi);
+    return {same ? v.r : 0.0f, same ? v.g : 0.0f, same ? v.b : 0.0f};
   }
   BxDFSample sample(const Vec3& wo, Point2 u) const {
     return sample_cosine_reflection(*this, wo, u);
