@@ -203,7 +203,8 @@ class BxDFImpl : public BxDF {
       float* __restrict p = out + start;
       for (size_t i = 0; i < m; ++i) {
         const float v = derived().density(a.at(i), b.at(i));
-        p[i] = (a.ok[i] & b.ok[i]) ? sanitize_nonnegative(v) : 0.0f;
+        const bool ok = (a.ok[i] & b.ok[i]) != 0;
+        p[i] = ok ? sanitize_nonnegative(v) : 0.0f;
       }
     }
   }

@@ -39,10 +39,7 @@ BXDF_KERNEL bool finite_nonnegative(float x) {
   return x >= 0.0f && x <= std::numeric_limits<float>::max();
 }
 // Maps NaN, Inf and negatives to 0: the last line of defence before a value leaves a model.
-// (Nested selects rather than finite_nonnegative's &&: GCC 12 vectorises them in more loops.)
-BXDF_KERNEL float sanitize_nonnegative(float x) {
-  return x >= 0.0f ? (x <= std::numeric_limits<float>::max() ? x : 0.0f) : 0.0f;
-}
+BXDF_KERNEL float sanitize_nonnegative(float x) { return finite_nonnegative(x) ? x : 0.0f; }
 
 // e^x for x in [−87, 88] (a normal result), within 1 ulp of the correctly rounded value:
 // Cephes' expf (x = n ln 2 + r with ln 2 in two parts, a degree-5 polynomial in r, times 2^n
