@@ -45,85 +45,80 @@ struct Rate {
   uint64_t hits = 0;
 };
 
-Rate embree_single(RTCScene scene, uint64_t n, int threads) {
+// Traces n random rays (rounded up to whole chunks) on `threads` threads and times it.
+// trace_chunk(rng, ctx, count) traces `count` rays drawn from rng and returns how many hit;
+// the two measurements below differ only in that function.
+template <class TraceChunk>
+Rate time_random_rays(uint64_t n, int threads, TraceChunk trace_chunk) {
   std::atomic<uint64_t> hits{0};
   tbb::task_arena arena(threads);
   const auto t0 = std::chrono::steady_clock::now();
   const uint64_t chunk = 1 << 14;
+  const uint64_t chunks = (n + chunk - 1) / chunk;
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<uint64_t>(0, (n + chunk - 1) / chunk, 1),
+    tbb::parallel_for(tbb::blocked_range<uint64_t>(0, chunks, 1),
                       [&](const tbb::blocked_range<uint64_t>& r) {
       for (uint64_t c = r.begin(); c != r.end(); ++c) {
         PCG32 rng(c, 12345);
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
-        uint64_t local = 0;
-        for (uint64_t i = 0; i < chunk; ++i) {
-          RTCRayHit rh;
-          float o[3], d[3];
-          random_ray(rng, o, d);
-          rh.ray.org_x = o[0]; rh.ray.org_y = o[1]; rh.ray.org_z = o[2];
-          rh.ray.dir_x = d[0]; rh.ray.dir_y = d[1]; rh.ray.dir_z = d[2];
-          rh.ray.tnear = 0.0f;
-          rh.ray.tfar = 1e30f;
-          rh.ray.time = 0.0f;
-          rh.ray.mask = 0xffffffffu;
-          rh.ray.id = 0;
-          rh.ray.flags = 0;
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-          rtcIntersect1(scene, &ctx, &rh);
-          local += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-        }
-        hits += local;
+        hits += trace_chunk(rng, ctx, chunk);
       }
     }, tbb::simple_partitioner());
   });
   const double s = seconds_since(t0);
-  const uint64_t total = ((n + chunk - 1) / chunk) * chunk;
-  return {static_cast<double>(total) / s, hits.load()};
+  return {static_cast<double>(chunks * chunk) / s, hits.load()};
+}
+
+Rate embree_single(RTCScene scene, uint64_t n, int threads) {
+  return time_random_rays(n, threads, [scene](PCG32& rng, RTCIntersectContext& ctx, uint64_t count) {
+    uint64_t local = 0;
+    for (uint64_t i = 0; i < count; ++i) {
+      RTCRayHit rh;
+      float o[3], d[3];
+      random_ray(rng, o, d);
+      rh.ray.org_x = o[0]; rh.ray.org_y = o[1]; rh.ray.org_z = o[2];
+      rh.ray.dir_x = d[0]; rh.ray.dir_y = d[1]; rh.ray.dir_z = d[2];
+      rh.ray.tnear = 0.0f;
+      rh.ray.tfar = 1e30f;
+      rh.ray.time = 0.0f;
+      rh.ray.mask = 0xffffffffu;
+      rh.ray.id = 0;
+      rh.ray.flags = 0;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene, &ctx, &rh);
+      local += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+    return local;
+  });
 }
 
 Rate embree_packet8(RTCScene scene, uint64_t n, int threads) {
-  std::atomic<uint64_t> hits{0};
-  tbb::task_arena arena(threads);
-  const auto t0 = std::chrono::steady_clock::now();
-  const uint64_t chunk = 1 << 14;
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<uint64_t>(0, (n + chunk - 1) / chunk, 1),
-                      [&](const tbb::blocked_range<uint64_t>& r) {
-      for (uint64_t c = r.begin(); c != r.end(); ++c) {
-        PCG32 rng(c, 12345);
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        alignas(32) int valid[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
-        uint64_t local = 0;
-        for (uint64_t i = 0; i < chunk; i += 8) {
-          alignas(32) RTCRayHit8 rh;
-          for (int k = 0; k < 8; ++k) {
-            float o[3], d[3];
-            random_ray(rng, o, d);
-            rh.ray.org_x[k] = o[0]; rh.ray.org_y[k] = o[1]; rh.ray.org_z[k] = o[2];
-            rh.ray.dir_x[k] = d[0]; rh.ray.dir_y[k] = d[1]; rh.ray.dir_z[k] = d[2];
-            rh.ray.tnear[k] = 0.0f;
-            rh.ray.tfar[k] = 1e30f;
-            rh.ray.time[k] = 0.0f;
-            rh.ray.mask[k] = 0xffffffffu;
-            rh.ray.id[k] = 0;
-            rh.ray.flags[k] = 0;
-            rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-            rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-          }
-          rtcIntersect8(valid, scene, &ctx, &rh);
-          for (int k = 0; k < 8; ++k) local += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-        }
-        hits += local;
+  return time_random_rays(n, threads, [scene](PCG32& rng, RTCIntersectContext& ctx, uint64_t count) {
+    alignas(32) int valid[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
+    uint64_t local = 0;
+    for (uint64_t i = 0; i < count; i += 8) {
+      alignas(32) RTCRayHit8 rh;
+      for (int k = 0; k < 8; ++k) {
+        float o[3], d[3];
+        random_ray(rng, o, d);
+        rh.ray.org_x[k] = o[0]; rh.ray.org_y[k] = o[1]; rh.ray.org_z[k] = o[2];
+        rh.ray.dir_x[k] = d[0]; rh.ray.dir_y[k] = d[1]; rh.ray.dir_z[k] = d[2];
+        rh.ray.tnear[k] = 0.0f;
+        rh.ray.tfar[k] = 1e30f;
+        rh.ray.time[k] = 0.0f;
+        rh.ray.mask[k] = 0xffffffffu;
+        rh.ray.id[k] = 0;
+        rh.ray.flags[k] = 0;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
       }
-    }, tbb::simple_partitioner());
+      rtcIntersect8(valid, scene, &ctx, &rh);
+      for (int k = 0; k < 8; ++k) local += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+    }
+    return local;
   });
-  const double s = seconds_since(t0);
-  const uint64_t total = ((n + chunk - 1) / chunk) * chunk;
-  return {static_cast<double>(total) / s, hits.load()};
 }
 
 }  // namespace
