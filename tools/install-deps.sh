@@ -5,7 +5,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  cmake g++ make pkg-config
+  cmake g++ make pkg-config ccache
   libgtest-dev libbenchmark-dev
   libembree-dev libtbb-dev
   libopenimageio-dev openimageio-tools
