@@ -21,7 +21,7 @@ def _job_from_argv():
         return json.load(fh)
 
 
-def _enable_addons(job):
+def enable_addons(job):
     import addon_utils
     import bpy
 
@@ -54,7 +54,7 @@ def _apply_overrides(spec, overrides):
     return replace(spec, objects=tuple(fix(o) for o in spec.objects))
 
 
-def _raise_engine_error(engine, seed):
+def raise_engine_error(engine, seed):
     """Blender swallows exceptions inside RenderEngine.render and may still write an (empty)
     image: the BXDF_LAB engine records its error in bxdf_lab.engine.last_error."""
     if engine != "BXDF_LAB":
@@ -81,7 +81,7 @@ def main():
             "renders": []}
     meta_path = os.path.join(out_dir, f"{engine}.meta.json")
 
-    meta["addons"] = _enable_addons(job)
+    meta["addons"] = enable_addons(job)
     spec = scenes.get(job["scene"])
     spec = _apply_overrides(spec, job.get("overrides", {}).get(engine, {}))
     if job.get("resolution"):
@@ -125,7 +125,7 @@ def main():
             start = time.perf_counter()
             bpy.ops.render.render(write_still=True)
             seconds = time.perf_counter() - start
-            _raise_engine_error(engine, seed)
+            raise_engine_error(engine, seed)
             if not os.path.isfile(image):
                 # Exceptions inside a RenderEngine are swallowed by Blender: no file is the sign.
                 raise RuntimeError(f"{engine} wrote no image (render failed) for seed {seed}")

@@ -49,3 +49,11 @@ if [ -d "$BUILD/python" ]; then
   echo "== Python API (bench/python_bench.py)"
   PYTHONPATH="$BUILD/python" /usr/bin/python3 bench/python_bench.py
 fi
+echo
+echo "== BXDF_LAB vs Cycles side by side (bench/side_by_side.py, 2 threads each)"
+for scene in ${SIDE_BY_SIDE_SCENES:-cornell}; do
+  BXDF_PYTHONPATH="$(pwd)/$BUILD/python" blender -b --factory-startup --python-exit-code 1 \
+    --python bench/side_by_side.py -- --scene "$scene" --spp 64 256 --threads 2 \
+    --reference-spp 1024 --repeats 3 --json "$BUILD/bench/side_by_side_$scene.json" 2>&1 \
+    | grep -E '^(side_by_side|  *spp| +[0-9]+ )' || { echo "run-bench: side_by_side failed on $scene" >&2; exit 1; }
+done

@@ -1,0 +1,153 @@
+"""BXDF_LAB against Cycles in one Blender process, interleaved, at equal samples and threads.
+
+    blender -b --factory-startup --python-exit-code 1 --python bench/side_by_side.py -- \
+        --scene cornell --spp 64 256 --threads 2 --reference-spp 1024 --repeats 3
+
+(`make bench` runs it through tools/run-bench.sh.) The scene is a harness scene (compare/scenes.py),
+its materials set up by the add-on exactly as the harness does, so each engine renders what it
+renders in `make report`. For every sample count both engines render `--repeats` times with
+different seeds, alternating (BXDF_LAB, Cycles, BXDF_LAB, ...), each render timed as the user sees
+it (bpy.ops.render.render: export, BVH, render, hand-back). The converged reference is the average
+of both engines' `--reference-spp` renders, so neither engine is favoured. Printed per sample count:
+each engine's median time, the time ratio, each engine's RMSE against the reference, and the
+time-to-equal-error ratio (MSE x time; below 1 means BXDF_LAB reaches a given error sooner).
+`--json FILE` also writes every number.
+"""
+import argparse
+import json
+import os
+import statistics
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+ENGINES = ("BXDF_LAB", "CYCLES")
+
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    p = argparse.ArgumentParser(prog="side_by_side.py", description=__doc__.splitlines()[0])
+    p.add_argument("--scene", default="cornell", help="harness scene name (compare/scenes.py)")
+    p.add_argument("--spp", type=int, nargs="+", default=[64, 256], help="sample counts")
+    p.add_argument("--threads", type=int, default=2, help="threads for both engines")
+    p.add_argument("--reference-spp", type=int, default=1024,
+                   help="samples of each engine's reference render")
+    p.add_argument("--repeats", type=int, default=3, help="renders per engine and sample count")
+    p.add_argument("--res", type=int, nargs=2, metavar=("W", "H"), default=None,
+                   help="resolution (default: the scene's)")
+    p.add_argument("--json", default=None, help="also write the results to this file")
+    args = p.parse_args(argv)
+    for name in ("threads", "reference_spp", "repeats"):
+        if getattr(args, name) < 1:
+            p.error(f"--{name.replace('_', '-')} must be at least 1, got {getattr(args, name)}")
+    if any(s < 1 for s in args.spp):
+        p.error(f"--spp values must be at least 1, got {args.spp}")
+    return args
+
+
+def set_up_scene(scene_name, resolution):
+    """Builds the harness scene once, with every material set up for both engines."""
+    import bpy
+    from dataclasses import replace
+
+    from compare import bpy_build, driver, engine_setup, material_setup, scenes
+
+    driver.enable_addons({"engine": "BXDF_LAB", "repo_root": ROOT})
+    spec = scenes.get(scene_name)
+    if resolution:
+        spec = replace(spec, resolution=tuple(resolution))
+    bpy_build.clear_scene()
+    materials = {m.name: bpy.data.materials.new(m.name) for m in spec.materials()}
+    objects = bpy_build.build(spec, materials)
+    engine_setup.common_settings(spec)
+    labels = {}
+    for mat_spec in spec.materials():
+        owner = next(objects[o.name] for o in spec.objects if o.material.name == mat_spec.name)
+        # The model first (BXDF_LAB renders it), then the add-on's Cycles node tree from it.
+        labels[mat_spec.name] = material_setup.setup(materials[mat_spec.name], owner,
+                                                     mat_spec.model, mat_spec.params, "CYCLES")
+    return spec, labels
+
+
+def render(engine, spec, spp, seed, threads, path):
+    """Renders once; returns (seconds, HxWx3 linear image)."""
+    import bpy
+
+    from compare import driver, engine_setup, imageio
+
+    configure = engine_setup.configure_cycles if engine == "CYCLES" else engine_setup.configure_bxdf_lab
+    configure(spec, spp, seed, threads)
+    bpy.context.scene.render.filepath = path
+    start = time.perf_counter()
+    bpy.ops.render.render(write_still=True)
+    seconds = time.perf_counter() - start
+    driver.raise_engine_error(engine, seed)
+    if not os.path.isfile(path):
+        raise RuntimeError(f"{engine} wrote no image for seed {seed}")
+    image = imageio.read(path)
+    os.remove(path)
+    return seconds, image
+
+
+def main():
+    args = parse_args()
+    for path in (ROOT, os.environ.get("BXDF_PYTHONPATH", ""), os.path.join(ROOT, "build", "python")):
+        if path and path not in sys.path:
+            sys.path.insert(0, path)
+    import numpy as np
+
+    spec, labels = set_up_scene(args.scene, args.res)
+    work = tempfile.mkdtemp(prefix="bxdf-side-by-side-")
+    out = lambda tag: os.path.join(work, f"{tag}.exr")  # noqa: E731
+
+    references = [render(e, spec, args.reference_spp, 9999, args.threads, out(f"ref_{e}"))[1]
+                  for e in ENGINES]
+    reference = 0.5 * (references[0] + references[1])
+    width, height = spec.resolution
+    print(f"side_by_side: scene {args.scene} ({width}x{height}, max_bounces {spec.max_bounces}), "
+          f"{args.threads} threads each, {args.repeats} interleaved renders per engine and sample "
+          f"count, reference = mean of both engines at {args.reference_spp} spp; "
+          f"materials: {', '.join(f'{k} {v}' for k, v in labels.items())}")
+    rows = []
+    for spp in args.spp:
+        seconds = {e: [] for e in ENGINES}
+        mse = {e: [] for e in ENGINES}
+        for r in range(args.repeats):
+            for engine in ENGINES:
+                t, image = render(engine, spec, spp, r, args.threads, out(f"{engine}_{spp}_{r}"))
+                seconds[engine].append(t)
+                mse[engine].append(float(np.mean((image - reference) ** 2)))
+        row = {"spp": spp}
+        for engine in ENGINES:
+            row[engine] = {"median_seconds": statistics.median(seconds[engine]),
+                           "seconds": seconds[engine],
+                           "rmse": float(np.sqrt(np.mean(mse[engine]))),
+                           "mse": float(np.mean(mse[engine]))}
+        b, c = row["BXDF_LAB"], row["CYCLES"]
+        row["time_ratio"] = b["median_seconds"] / c["median_seconds"]
+        row["equal_error_ratio"] = (b["mse"] * b["median_seconds"]) / (c["mse"] * c["median_seconds"])
+        rows.append(row)
+    print(f"{'spp':>6} {'BXDF_LAB s':>11} {'Cycles s':>9} {'time ratio':>11} "
+          f"{'RMSE BXDF_LAB':>14} {'RMSE Cycles':>12} {'equal-error ratio':>18}")
+    for row in rows:
+        b, c = row["BXDF_LAB"], row["CYCLES"]
+        print(f"{row['spp']:>6} {b['median_seconds']:>11.3f} {c['median_seconds']:>9.3f} "
+              f"{row['time_ratio']:>11.2f} {b['rmse']:>14.5f} {c['rmse']:>12.5f} "
+              f"{row['equal_error_ratio']:>18.2f}")
+    if args.json:
+        with open(args.json, "w", encoding="utf-8") as fh:
+            json.dump({"scene": args.scene, "threads": args.threads,
+                       "reference_spp": args.reference_spp, "rows": rows}, fh, indent=1)
+    os.rmdir(work)
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except BaseException:  # noqa: BLE001 - any failure must end Blender with a non-zero code
+        import traceback
+        traceback.print_exc()
+        sys.stdout.flush()
+        os._exit(3)
