@@ -1,0 +1,130 @@
+"""Export of materials that render from their node trees (material_source.py): their material
+graphs (nodes/), Cycles' closure budget for the scene, and the mesh data the graphs read.
+
+Per material: {"name", "graph"} (docs/material-graph.md); when the graph is one closure of a
+registry model with weight 1, constant parameters and no normal, also {"model", "params"} (and a
+constant "emission"), the same material in the form every renderer build reads.
+
+Per mesh, for the UV maps its materials' graphs read: "uv_maps", a list aligned with the scene's
+"uv_map_names" ("" = the mesh's active render map), each None (the mesh has no such map) or
+{"name", "uvs": (L, 2) float32, "uv_indices": (T, 3) int32 into uvs, and for maps a Normal Map
+reads "tangents": (L, 3) float32 and "bitangent_signs": (L,) float32, indexed as uvs, from
+`mesh.calc_tangents`}; and "texspace_location", "texspace_size" ((3,) float32): Cycles' generated
+coordinates are (P_object − location) / (2·size) + 0.5.
+"""
+
+import numpy as np
+
+from . import nodes
+from .nodes import closure_budget, registry_params
+
+
+class NodeMaterials:
+    def __init__(self):
+        self.translations = []   # (entry dict, Translation) of the materials rendered from nodes
+        self.cycles_only = []    # Translations of model materials: only Cycles' budget needs them
+
+    def entry(self, material):
+        """The scene material of a node-tree material (its graph is filled in by finish())."""
+        translation = nodes.translate(material)
+        entry = {"name": material.name}
+        self.translations.append((entry, translation))
+        return entry
+
+    def count_for_cycles(self, material):
+        """A material rendered from its BxDF Lab model still has a node tree that Cycles renders
+        (a comparison's set-up): it sizes Cycles' closure budget like any other."""
+        if material.use_nodes and material.node_tree is not None:
+            self.cycles_only.append(nodes.translate(material))
+
+    def _translation(self, material):
+        return next((t for _, t in self.translations if t.material == material), None)
+
+    def mesh_attributes(self, mesh, data, materials):
+        """UV maps, tangents and texture space that the graphs of `materials` read on `mesh`
+        (keys of the module docstring, with "uv_layers" keyed by graph UV map name until
+        finish() aligns them); warnings go to the translations."""
+        out = {"texspace_location": np.array(mesh.texspace_location, dtype=np.float32),
+               "texspace_size": np.array(mesh.texspace_size, dtype=np.float32), "uv_layers": {}}
+        corners = data["uv_indices"]
+        for material in materials:
+            translation = self._translation(material) if material is not None else None
+            if translation is None or corners is None:
+                continue
+            tangent_maps = {n["map"] for n in translation.graph.nodes if n["op"] == "normal_map"}
+            for index, name in enumerate(translation.uv_maps):
+                if name in out["uv_layers"] and (index not in tangent_maps or
+                                                 "tangents" in (out["uv_layers"][name] or {})):
+                    continue
+                out["uv_layers"][name] = self._uv_layer(mesh, name, corners, index in tangent_maps,
+                                                        translation)
+        return out
+
+    @staticmethod
+    def _uv_layer(mesh, name, corners, with_tangents, translation):
+        layer = (next((l for l in mesh.uv_layers if l.active_render), None) if name == ""
+                 else mesh.uv_layers.get(name))
+        if layer is None:
+            if name:
+                translation.warn(None, (), f"mesh '{mesh.name}' has no UV map '{name}'; its "
+                                 "coordinates read as (0, 0), as in Cycles")
+            return None
+        n_loops = len(mesh.loops)
+        uvs = np.empty(n_loops * 2, dtype=np.float32)
+        layer.data.foreach_get("uv", uvs)
+        out = {"name": layer.name, "uvs": uvs.reshape(n_loops, 2), "uv_indices": corners}
+        if with_tangents:
+            try:
+                mesh.calc_tangents(uvmap=layer.name)
+            except RuntimeError as exc:  # n-gons: Blender computes tangents of tris and quads only
+                translation.warn(None, (), f"mesh '{mesh.name}': no tangents for UV map "
+                                 f"'{layer.name}' ({exc}); its normal maps are flat")
+                return out
+            tangents = np.empty(n_loops * 3, dtype=np.float32)
+            mesh.loops.foreach_get("tangent", tangents)
+            signs = np.empty(n_loops, dtype=np.float32)
+            mesh.loops.foreach_get("bitangent_sign", signs)
+            mesh.free_tangents()
+            out.update(tangents=tangents.reshape(n_loops, 3), bitangent_signs=signs)
+        return out
+
+    def finish(self, scene_data):
+        """Applies Cycles' closure budget, fills each entry's graph, aligns the meshes' UV maps
+        with the scene's "uv_map_names" and adds the translations' warnings."""
+        translations = [t for _, t in self.translations]
+        budget = closure_budget.scene_budget(translations + self.cycles_only)
+        names = [""] + sorted({n for t in translations for n in t.uv_maps} - {""})
+        for entry, translation in self.translations:
+            closure_budget.apply(translation, budget)
+            graph = translation.graph.as_dict()
+            scene_index = [names.index(n) for n in translation.uv_maps]
+            for node in graph["nodes"]:
+                if node["op"] in ("uv", "normal_map"):
+                    node["map"] = scene_index[node["map"]]
+            entry["graph"] = graph
+            entry.update(_single_model_form(graph))
+            scene_data["warnings"].extend(translation.warnings)
+        for mesh in scene_data["meshes"]:
+            layers = mesh.pop("uv_layers", {})
+            mesh["uv_maps"] = [layers.get(name) for name in names]
+        scene_data["uv_map_names"] = names
+        scene_data["closure_budget"] = budget
+
+
+def _single_model_form(graph):
+    """{"model", "params", "emission"} when the graph is exactly one registry model with weight
+    1, constant parameters and the smooth normal (or no closure, rendered black), else {}."""
+    emission = graph["emission"]
+    if isinstance(emission, dict) or graph["nodes"]:
+        return {}
+    closures = graph["closures"]
+    out = {"emission": list(emission)} if any(emission) else {}
+    if not closures:
+        return out or {"model": "lambertian", "params": {"reflectance": 0.0}}
+    if len(closures) != 1:
+        return {}
+    closure = closures[0]
+    if (set(closure) != {"model", "weight", "params"} or closure["weight"] != 1.0 or
+            closure["model"] not in registry_params.models()):
+        return {}
+    return {**out, "model": closure["model"], "params": dict(closure["params"])}
