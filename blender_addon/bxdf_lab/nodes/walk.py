@@ -230,14 +230,10 @@ class Scope:
         return self.translation.value(self.socket(name), self.path, self.node, kind)
 
     def socket(self, name):
-        node = self.node
-        for socket in node.inputs:
-            if socket.identifier == name and socket.enabled:
-                return socket
-        for socket in node.inputs:
-            if socket.name == name and socket.enabled:
-                return socket
-        return node.inputs[name]
+        """The input with identifier `name`, else the enabled (then any) input named `name`."""
+        inputs = self.node.inputs
+        return (next((s for s in inputs if s.identifier == name), None) or
+                next((s for s in inputs if s.name == name and s.enabled), None) or inputs[name])
 
     def linked(self, name):
         return self.translation.resolve(self.socket(name), self.path, self.node)[0] == "output"

@@ -1,0 +1,139 @@
+"""Export of node-tree materials: graphs, UV maps and tangents, Cycles' closure budget, warnings;
+and renders through BXDF_LAB against Cycles for the graphs this renderer build reads."""
+
+import bpy
+import numpy as np
+import pytest
+
+from bxdf_lab import engine, export
+from test_nodes import Tree
+from test_render import _render, _scene, bxdf_render  # noqa: F401 (a fixture)
+
+
+def _plane(material, name="plane", location=(0, 0, 0)):
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [], [(0, 1, 2, 3)])
+    mesh.uv_layers.new(name="UVMap")
+    mesh.uv_layers.new(name="Detail")
+    mesh.materials.append(material)
+    obj = bpy.data.objects.new(name, mesh)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def _export():
+    return export.export_scene(bpy.context.evaluated_depsgraph_get())
+
+
+def test_uv_maps_tangents_and_texture_space_follow_the_graph():
+    tree = Tree("textured")
+    glossy = tree.surface(tree.add("ShaderNodeBsdfGlossy"))
+    normal_map = tree.add("ShaderNodeNormalMap")
+    normal_map.uv_map = "Detail"
+    image = tree.add("ShaderNodeTexImage")
+    image.image = bpy.data.images.new("bumps", 2, 2)
+    tree.link(image.outputs["Color"], normal_map.inputs["Color"])
+    tree.link(normal_map.outputs[0], glossy.inputs["Normal"])
+    plane = _plane(tree.material)
+    data = _export()
+    assert data["uv_map_names"] == ["", "Detail"] and data["warnings"] == []
+    (mesh,) = data["meshes"]
+    render_map, detail = mesh["uv_maps"]
+    assert render_map["name"] == "UVMap" and "tangents" not in render_map
+    assert detail["name"] == "Detail" and detail["uvs"].shape == (4, 2)
+    np.testing.assert_array_equal(detail["uv_indices"], mesh["uv_indices"])
+    assert detail["tangents"].shape == (4, 3) and detail["bitangent_signs"].shape == (4,)
+    # a plane in z = 0 with Blender's default UVs: tangent along +x, bitangent along +y
+    np.testing.assert_allclose(detail["tangents"], np.tile([1.0, 0.0, 0.0], (4, 1)), atol=1e-6)
+    np.testing.assert_allclose(detail["bitangent_signs"], 1.0)
+    np.testing.assert_allclose(mesh["texspace_location"], plane.data.texspace_location)
+    np.testing.assert_allclose(mesh["texspace_size"], plane.data.texspace_size)
+    (entry,) = data["materials"]
+    nm = next(n for n in entry["graph"]["nodes"] if n["op"] == "normal_map")
+    assert data["uv_map_names"][nm["map"]] == "Detail"
+    assert "model" not in entry  # a graph with nodes has no single-model form
+
+
+def test_a_uv_map_the_mesh_lacks_is_a_warning():
+    tree = Tree("elsewhere")
+    diffuse = tree.surface(tree.add("ShaderNodeBsdfDiffuse"))
+    uv = tree.add("ShaderNodeUVMap")
+    uv.uv_map = "Nope"
+    image = tree.add("ShaderNodeTexImage")
+    image.image = bpy.data.images.new("px", 1, 1)
+    tree.link(uv.outputs[0], image.inputs["Vector"])
+    tree.link(image.outputs[0], diffuse.inputs["Color"])
+    _plane(tree.material)
+    data = _export()
+    assert data["meshes"][0]["uv_maps"][1] is None
+    assert data["warnings"] == ["material 'elsewhere': material: mesh 'plane' has no UV map "
+                                "'Nope'; its coordinates read as (0, 0), as in Cycles"]
+
+
+def _all_lobes_principled(name):
+    tree = Tree(name)
+    tree.surface(tree.add("ShaderNodeBsdfPrincipled", Sheen=0.5, Transmission=0.5, Clearcoat=1.0))
+    return tree
+
+
+def test_a_lone_principled_with_every_lobe_loses_its_clearcoat_as_in_cycles():
+    _plane(_all_lobes_principled("everything").material)
+    data = _export()
+    assert data["closure_budget"] == 8
+    params = data["materials"][0]["graph"]["closures"][0]["params"]
+    assert params["clearcoat"] == 0.0 and params["sheen"] == 0.5
+    assert data["warnings"] == [
+        "material 'everything': node 'Principled BSDF': Cycles' closure budget for this scene is "
+        "8 slots per shader and the clearcoat (2 slots) does not fit; dropped, as Cycles drops it"]
+
+
+def test_a_larger_shader_elsewhere_in_the_scene_keeps_the_clearcoat():
+    _plane(_all_lobes_principled("everything").material)
+    other = Tree("mixed")
+    mix = other.surface(other.add("ShaderNodeMixShader"))
+    other.link(other.add("ShaderNodeBsdfPrincipled").outputs[0], mix.inputs[1])
+    other.link(other.add("ShaderNodeBsdfGlass").outputs[0], mix.inputs[2])
+    _plane(other.material, "other", (3, 0, 0))
+    data = _export()
+    assert data["closure_budget"] == 10 and data["warnings"] == []
+    clearcoats = [m["graph"]["closures"][0]["params"]["clearcoat"] for m in data["materials"]]
+    assert clearcoats == [1.0, 0.0]
+
+
+# ---- renders: node materials through BXDF_LAB against Cycles ---------------------------------
+
+def _diffuse(tree):
+    tree.surface(tree.add("ShaderNodeBsdfDiffuse", Color=(0.7, 0.5, 0.3, 1.0), Roughness=0.8))
+
+
+def _glossy(distribution):
+    def build(tree):
+        node = tree.surface(tree.add("ShaderNodeBsdfGlossy", Color=(0.7, 0.5, 0.3, 1.0),
+                                     Roughness=0.5))
+        node.distribution = distribution
+    return build
+
+
+def _emission(tree):
+    tree.surface(tree.add("ShaderNodeEmission", Color=(0.6, 0.3, 0.1, 1.0), Strength=2.0))
+
+
+def _no_nodes(tree):
+    tree.material.use_nodes = False
+    tree.material.diffuse_color = (0.2, 0.6, 0.4, 1.0)
+
+
+@pytest.mark.parametrize("build", [_diffuse, _glossy("GGX"), _glossy("BECKMANN"), _emission,
+                                   _no_nodes], ids=["diffuse", "glossy_ggx", "glossy_beckmann",
+                                                    "emission", "no_nodes"])
+def test_node_material_renders_like_cycles(build, bxdf_render, tmp_path):
+    tree = Tree("node material")
+    build(tree)
+    scene = _scene(tree.material, tmp_path)
+    ours = _render(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
+    assert engine.last_error == ""
+    cycles = _render(scene, "CYCLES", str(tmp_path / "cycles.exr"))
+    assert ours[..., :3].max() > 0.05
+    # delta sun, direct light only, pixel centres: both are noise-free
+    np.testing.assert_allclose(ours[..., :3], cycles[..., :3], rtol=5e-3, atol=1e-4)
