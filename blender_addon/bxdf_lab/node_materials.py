@@ -103,6 +103,11 @@ class NodeMaterials:
                     node["map"] = scene_index[node["map"]]
             entry["graph"] = graph
             entry.update(_single_model_form(graph))
+            for closure in graph["closures"]:
+                model = closure["model"]
+                if model != "holdout" and model not in registry_params.models():
+                    translation.warn(None, (), f"model '{model}' is not in this build of bxdf "
+                                     "(bxdf.models()); the renderer cannot render it")
             scene_data["warnings"].extend(translation.warnings)
         for mesh in scene_data["meshes"]:
             layers = mesh.pop("uv_layers", {})

@@ -2,6 +2,7 @@
 through a cache file), interpolation, extension, colour space and alpha mode. A missing image
 reads magenta, with a warning; an unlinked Vector reads the active render UV map."""
 
+from . import graph as g
 from . import image_files
 
 BL_IDNAMES = ("ShaderNodeTexImage",)
@@ -40,9 +41,9 @@ def _lookup(scope, node):
     graph = scope.graph
     if node.projection != "FLAT":
         scope.warn(f"projection {node.projection} is not translated; flat projection is used")
-    if scope.linked("Vector"):
-        vector = scope.input("Vector", "triple")
-    else:
+    # Unlinked (or linked to something untranslated), Cycles reads the active render UV map.
+    vector = scope.input("Vector", "triple") if scope.linked("Vector") else None
+    if not g.is_reference(vector):
         vector = graph.add("uv", ["vector"], map=scope.uv_map(""))["vector"]
     return graph.add("image", ["color", "alpha"], texture=graph.texture(texture(scope, node)),
                      vector=vector)

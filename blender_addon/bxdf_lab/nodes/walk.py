@@ -31,6 +31,16 @@ def socket_default(socket):
     return g.to_triple(tuple(value))
 
 
+def default_text(socket):
+    """What an input falls back to, in a warning: its value, or for the hidden-value vector
+    inputs Cycles fills itself, what Cycles uses."""
+    if socket.type == "VECTOR" and getattr(socket, "hide_value", False):
+        if socket.name == "Vector":
+            return "its default texture coordinates"
+        return "the smooth shading normal"
+    return f"its default value {describe_value(socket_default(socket))}"
+
+
 def describe_value(value):
     if g.is_reference(value):
         return "a linked value"
@@ -57,8 +67,8 @@ class Translation:
     # ---- reporting ----------------------------------------------------------------------
 
     def warn(self, node, path, text):
-        where = f"node '{qualified_name(node, path)}' ({node.bl_idname})" if node else "material"
-        warning = f"material '{self.material.name}': {where}: {text}"
+        where = f"node '{qualified_name(node, path)}' ({node.bl_idname}): " if node else ""
+        warning = f"material '{self.material.name}': {where}{text}"
         if warning not in self.warnings:
             self.warnings.append(warning)
 
@@ -90,7 +100,7 @@ class Translation:
             seen += 1
             if seen > 10000:  # reroute or group loops that Blender did not flag
                 self.warn(consumer, path, f"input '{socket.name}' is linked in a loop; "
-                          f"its default value {describe_value(socket_default(socket))} is used")
+                          f"{default_text(socket)} is used")
                 return ("default", socket, path)
             links = [link for link in socket.links if not link.is_muted] if socket.is_linked else []
             if not links:
@@ -98,8 +108,7 @@ class Translation:
             link = links[0]
             if not link.is_valid:
                 self.warn(consumer, path, f"input '{socket.name}' has an invalid link (a cycle or "
-                          f"mismatched sockets); its default value "
-                          f"{describe_value(socket_default(socket))} is used")
+                          f"mismatched sockets); {default_text(socket)} is used")
                 return ("default", socket, path)
             node, out = link.from_node, link.from_socket
             if node.bl_idname == "NodeReroute":
@@ -128,8 +137,7 @@ class Translation:
                 if inner is None:
                     self.note(node, path, "unsupported", "empty node group")
                     self.warn(node, path, f"the node group has no output '{out.name}'; input "
-                              f"'{socket.name}' uses its default value "
-                              f"{describe_value(socket_default(socket))}")
+                              f"'{socket.name}' uses {default_text(socket)}")
                     return ("default", socket, path)
                 self.note(node, path, "exact", "flattened")
                 path = path + (node,)
@@ -148,22 +156,21 @@ class Translation:
             return g.convert(socket_default(found[1]), kind)
         _, node, out, node_path = found
         if out.type == "SHADER":
-            self.warn(consumer, path, f"input '{socket.name}' is fed by a shader output; its "
-                      f"default value {describe_value(socket_default(socket))} is used")
+            self.warn(consumer, path, f"input '{socket.name}' is fed by a shader output; "
+                      f"{default_text(socket)} is used")
             return g.convert(socket_default(socket), kind)
         key = (tuple(n.name for n in node_path), node.name, out.identifier)
         if key in self._cache:
             return g.convert(self._cache[key], kind)
         if key in self._visiting:
             self.warn(consumer, path, f"input '{socket.name}' depends on itself (a cyclic node "
-                      f"tree); its default value {describe_value(socket_default(socket))} is used")
+                      f"tree); {default_text(socket)} is used")
             return g.convert(socket_default(socket), kind)
         translator = TRANSLATORS.get(node.bl_idname)
         if translator is None or not hasattr(translator, "value"):
             self.note(node, node_path, "unsupported", "no translator for this node")
             self.warn(node, node_path, f"this node is not supported; input '{socket.name}' of node "
-                      f"'{qualified_name(consumer, path)}' uses its default value "
-                      f"{describe_value(socket_default(socket))}")
+                      f"'{qualified_name(consumer, path)}' uses {default_text(socket)}")
             return g.convert(socket_default(socket), kind)
         self._visiting.add(key)
         try:
