@@ -32,15 +32,24 @@ def _translation_warnings(data):
     return [w for w in data["warnings"] if "is not in this build of bxdf" not in w]
 
 
+def _image_through(tree, bl_idname, uv_map, into):
+    """An Image Texture feeding `into` through a node (`bl_idname`) naming UV map `uv_map`."""
+    node = tree.add(bl_idname)
+    node.uv_map = uv_map
+    image = tree.add("ShaderNodeTexImage")
+    image.image = bpy.data.images.new("pixels", 2, 2)
+    if bl_idname == "ShaderNodeNormalMap":
+        tree.link(image.outputs["Color"], node.inputs["Color"])
+        tree.link(node.outputs[0], into)
+    else:
+        tree.link(node.outputs[0], image.inputs["Vector"])
+        tree.link(image.outputs["Color"], into)
+
+
 def test_uv_maps_tangents_and_texture_space_follow_the_graph():
     tree = Tree("textured")
     glossy = tree.surface(tree.add("ShaderNodeBsdfGlossy"))
-    normal_map = tree.add("ShaderNodeNormalMap")
-    normal_map.uv_map = "Detail"
-    image = tree.add("ShaderNodeTexImage")
-    image.image = bpy.data.images.new("bumps", 2, 2)
-    tree.link(image.outputs["Color"], normal_map.inputs["Color"])
-    tree.link(normal_map.outputs[0], glossy.inputs["Normal"])
+    _image_through(tree, "ShaderNodeNormalMap", "Detail", glossy.inputs["Normal"])
     plane = _plane(tree.material)
     data = _export()
     assert data["uv_map_names"] == ["", "Detail"] and data["warnings"] == []
@@ -64,12 +73,7 @@ def test_uv_maps_tangents_and_texture_space_follow_the_graph():
 def test_a_uv_map_the_mesh_lacks_is_a_warning():
     tree = Tree("elsewhere")
     diffuse = tree.surface(tree.add("ShaderNodeBsdfDiffuse"))
-    uv = tree.add("ShaderNodeUVMap")
-    uv.uv_map = "Nope"
-    image = tree.add("ShaderNodeTexImage")
-    image.image = bpy.data.images.new("px", 1, 1)
-    tree.link(uv.outputs[0], image.inputs["Vector"])
-    tree.link(image.outputs[0], diffuse.inputs["Color"])
+    _image_through(tree, "ShaderNodeUVMap", "Nope", diffuse.inputs["Color"])
     _plane(tree.material)
     data = _export()
     assert data["meshes"][0]["uv_maps"][1] is None

@@ -403,9 +403,9 @@ def test_missing_images_read_magenta_with_a_warning(tree):
     t = nodes.translate(tree.material)
     assert graph["textures"] == [{"missing": True}]
     assert colour == {"node": 1, "out": "color"}
-    assert t.warnings == [f"material 'Tree': node 'Image Texture' (ShaderNodeTexImage): image "
-                          f"'wood.png': file /nonexistent/wood.png not found; it renders magenta "
-                          f"(1, 0, 1), as Cycles renders a missing image"]
+    assert t.warnings == ["material 'Tree': node 'Image Texture' (ShaderNodeTexImage): image "
+                          "'wood.png': file /nonexistent/wood.png not found; it renders magenta "
+                          "(1, 0, 1), as Cycles renders a missing image"]
 
 
 def _pixels(width, height):

@@ -12,9 +12,7 @@ def value(scope, node, output):
     height = scope.input("Height", "float")
     if g.is_constant(height):
         return normal if normal is not None else graph.add("normal", ["vector"])["vector"]
-    fields = {"strength": scope.input("Strength", "float"),
-              "distance": scope.input("Distance", "float"), "invert": bool(node.invert),
-              "height": height}
-    if normal is not None:
-        fields["normal"] = normal
+    fields = scope.with_normal({"strength": scope.input("Strength", "float"),
+                                "distance": scope.input("Distance", "float"),
+                                "invert": bool(node.invert), "height": height})
     return graph.add("bump", ["normal"], **fields)["normal"]

@@ -4,8 +4,5 @@ BL_IDNAMES = ("ShaderNodeFresnel",)
 
 
 def value(scope, node, output):
-    fields = {"ior": scope.input("IOR", "float")}
-    normal = scope.normal()
-    if normal is not None:
-        fields["normal"] = normal
+    fields = scope.with_normal({"ior": scope.input("IOR", "float")})
     return scope.graph.add("fresnel", ["fac"], **fields)["fac"]

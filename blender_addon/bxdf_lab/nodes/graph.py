@@ -75,7 +75,8 @@ class Graph:
             return b
         if is_constant(b) and to_float(b) == 1.0:
             return a
-        return self.add("math", ["value"], operation="multiply", clamp=False, a=a, b=b, c=0.0)["value"]
+        return self.add("math", ["value"], operation="multiply", clamp=False, a=a, b=b,
+                        c=0.0)["value"]
 
     def saturate(self, value):
         """Clamped to [0, 1], as Cycles clamps a Mix Shader's factor."""

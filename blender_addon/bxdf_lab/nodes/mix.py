@@ -20,9 +20,10 @@ def _factor(scope, node, uniform):
 def value(scope, node, output):
     graph = scope.graph
     if node.data_type == "RGBA":
+        a, b = scope.input("A_Color", "triple"), scope.input("B_Color", "triple")
         return graph.add("mix_rgb", ["color"], blend=node.blend_type.lower(),
                          clamp=bool(node.clamp_result), fac=_factor(scope, node, True),
-                         a=scope.input("A_Color", "triple"), b=scope.input("B_Color", "triple"))["color"]
+                         a=a, b=b)["color"]
     if node.data_type == "FLOAT":
         a, b = scope.input("A_Float", "float"), scope.input("B_Float", "float")
         difference = graph.add("math", ["value"], operation="subtract", clamp=False, a=b, b=a,

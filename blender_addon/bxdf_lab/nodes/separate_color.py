@@ -10,6 +10,6 @@ def value(scope, node, output):
         scope.warn(f"mode {node.mode} is not translated; output '{output.name}' is 0",
                    status="unsupported")
         return 0.0
-    parts = scope.memo("op", lambda: scope.graph.add("separate", ["x", "y", "z", "r", "g", "b"],
-                            vector=scope.input("Color", "triple")))
+    colour = scope.input("Color", "triple")
+    parts = scope.memo("op", lambda: scope.graph.add("separate", ["r", "g", "b"], vector=colour))
     return parts[OUTPUTS[output.identifier]]

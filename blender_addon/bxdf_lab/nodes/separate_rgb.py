@@ -5,6 +5,6 @@ OUTPUTS = {"R": "r", "G": "g", "B": "b"}
 
 
 def value(scope, node, output):
-    parts = scope.memo("op", lambda: scope.graph.add("separate", ["x", "y", "z", "r", "g", "b"],
-                            vector=scope.input(node.inputs[0].identifier, "triple")))
+    colour = scope.input(node.inputs[0].identifier, "triple")
+    parts = scope.memo("op", lambda: scope.graph.add("separate", ["r", "g", "b"], vector=colour))
     return parts[OUTPUTS[output.identifier]]

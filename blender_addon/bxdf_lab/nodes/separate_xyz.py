@@ -4,5 +4,6 @@ BL_IDNAMES = ("ShaderNodeSeparateXYZ",)
 
 
 def value(scope, node, output):
-    parts = scope.memo("op", lambda: scope.graph.add("separate", ["x", "y", "z"], vector=scope.input("Vector", "triple")))
+    vector = scope.input("Vector", "triple")
+    parts = scope.memo("op", lambda: scope.graph.add("separate", ["x", "y", "z"], vector=vector))
     return parts[output.identifier.lower()]

@@ -3,8 +3,12 @@
 BL_IDNAMES = ("ShaderNodeVectorMath",)
 
 
-def value(scope, node, output):
+def _op(scope, node):
     a, b, c = (scope.input(s.identifier, "triple") for s in node.inputs[:3])
-    result = scope.memo("op", lambda: scope.graph.add("vector_math", ["vector", "value"], operation=node.operation.lower(),
-                             a=a, b=b, c=c, scale=scope.input("Scale", "float")))
+    return scope.graph.add("vector_math", ["vector", "value"], operation=node.operation.lower(),
+                           a=a, b=b, c=c, scale=scope.input("Scale", "float"))
+
+
+def value(scope, node, output):
+    result = scope.memo("op", lambda: _op(scope, node))
     return result["value" if output.identifier == "Value" else "vector"]

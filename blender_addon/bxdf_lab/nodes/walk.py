@@ -255,6 +255,14 @@ class Scope:
         value = self.input(name, "triple")
         return value if g.is_reference(value) else None
 
+    def with_normal(self, fields, name="Normal"):
+        """`fields` plus "normal" when the node's Normal input is linked (ops whose normal is
+        optional: unlinked, the renderer uses the smooth normal)."""
+        normal = self.normal(name)
+        if normal is not None:
+            fields["normal"] = normal
+        return fields
+
     def warn(self, text, status="approximate"):
         self.translation.note(self.node, self.path, status, text)
         self.translation.warn(self.node, self.path, text)
