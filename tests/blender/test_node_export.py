@@ -139,6 +139,35 @@ def _glossy(distribution):
     return build
 
 
+def _constants_through_reroute_muted_node_and_group(tree):
+    """RGB → reroute → muted Invert → a group passing its input through → Diffuse Color; Value →
+    Roughness: all constant, so the graph has no nodes."""
+    rgb = tree.add("ShaderNodeRGB")
+    rgb.outputs[0].default_value = (0.2, 0.6, 0.4, 1.0)
+    reroute = tree.nodes.new("NodeReroute")
+    muted = tree.add("ShaderNodeInvert")
+    muted.mute = True
+    group_tree = bpy.data.node_groups.new("pass", "ShaderNodeTree")
+    group_tree.inputs.new("NodeSocketColor", "In")
+    group_tree.outputs.new("NodeSocketColor", "Out")
+    group_tree.links.new(group_tree.nodes.new("NodeGroupInput").outputs[0],
+                         group_tree.nodes.new("NodeGroupOutput").inputs[0])
+    group = tree.add("ShaderNodeGroup")
+    group.node_tree = group_tree
+    value = tree.add("ShaderNodeValue")
+    value.outputs[0].default_value = 0.6
+    diffuse = tree.surface(tree.add("ShaderNodeBsdfDiffuse"))
+    for a, b in ((rgb.outputs[0], reroute.inputs[0]), (reroute.outputs[0], muted.inputs["Color"]),
+                 (muted.outputs[0], group.inputs[0]), (group.outputs[0], diffuse.inputs["Color"]),
+                 (value.outputs[0], diffuse.inputs["Roughness"])):
+        tree.link(a, b)
+
+
+def _anisotropic_without_anisotropy(tree):
+    tree.surface(tree.add("ShaderNodeBsdfAnisotropic", Color=(0.7, 0.5, 0.3, 1.0), Roughness=0.4,
+                          Anisotropy=0.0))
+
+
 def _emission(tree):
     tree.surface(tree.add("ShaderNodeEmission", Color=(0.6, 0.3, 0.1, 1.0), Strength=2.0))
 
@@ -148,9 +177,11 @@ def _no_nodes(tree):
     tree.material.diffuse_color = (0.2, 0.6, 0.4, 1.0)
 
 
-@pytest.mark.parametrize("build", [_diffuse, _glossy("GGX"), _glossy("BECKMANN"), _emission,
-                                   _no_nodes], ids=["diffuse", "glossy_ggx", "glossy_beckmann",
-                                                    "emission", "no_nodes"])
+@pytest.mark.parametrize("build", [
+    _diffuse, _glossy("GGX"), _glossy("BECKMANN"), _anisotropic_without_anisotropy, _emission,
+    _no_nodes, _constants_through_reroute_muted_node_and_group,
+], ids=["diffuse", "glossy_ggx", "glossy_beckmann", "anisotropic_0", "emission", "no_nodes",
+        "reroute_muted_group"])
 def test_node_material_renders_like_cycles(build, bxdf_render, tmp_path):
     tree = Tree("node material")
     build(tree)

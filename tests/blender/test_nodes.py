@@ -324,6 +324,21 @@ def test_texture_coordinates_uv_map_and_mapping(tree):
     assert transform["kind"] == "point" and transform["normalize"] is False
 
 
+def test_geometry_outputs_and_an_untranslated_one(tree):
+    geometry = tree.add("ShaderNodeNewGeometry")
+    fresnel = tree.add("ShaderNodeFresnel")
+    tree.link(geometry.outputs["Normal"], fresnel.inputs["Normal"])
+    diffuse = tree.surface(tree.add("ShaderNodeBsdfDiffuse"))
+    tree.link(fresnel.outputs[0], diffuse.inputs["Roughness"])
+    tree.link(geometry.outputs["Pointiness"], diffuse.inputs["Color"])
+    t, graph = tree.translate()
+    assert graph["nodes"] == [{"op": "normal"}, {"op": "fresnel", "ior": approx(1.45),
+                                                 "normal": {"node": 0, "out": "vector"}}]
+    assert graph["closures"][0]["params"]["color"] == [0.0, 0.0, 0.0]
+    assert t.warnings == ["material 'Tree': node 'Geometry' (ShaderNodeNewGeometry): output "
+                          "'Pointiness' is not translated; (0, 0, 0) is used instead"]
+
+
 def test_mapping_matrices_match_blender_for_each_type():
     loc, rot, scale = (1.0, -2.0, 0.5), (0.3, -0.7, 1.1), (2.0, 0.5, 3.0)
     point = np.array(mathutils.Matrix.LocRotScale(loc, mathutils.Euler(rot), scale))

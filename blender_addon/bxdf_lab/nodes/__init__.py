@@ -21,7 +21,7 @@ NODE_MODULES = (
     "image_texture", "rgb", "value", "mix_rgb", "mix", "math", "vector_math", "invert", "gamma",
     "bright_contrast", "hue_saturation", "separate_rgb", "separate_xyz", "separate_color",
     "combine_rgb", "combine_xyz", "combine_color", "color_ramp", "fresnel", "layer_weight",
-    "texture_coordinate", "mapping", "uv_map", "normal_map", "bump",
+    "texture_coordinate", "geometry", "mapping", "uv_map", "normal_map", "bump",
 )
 
 for _name in NODE_MODULES:
