@@ -521,3 +521,55 @@ def test_displacement_is_reported(tree):
     t, _ = tree.translate()
     assert t.warnings == ["material 'Tree': node 'Material Output' (ShaderNodeOutputMaterial): the "
                           "Displacement input is not translated; the surface is rendered without it"]
+
+
+def _node_mix(tree, rng):
+    """Two of every node kind the translators know, three reroutes, and six other shader
+    nodes (untranslated ones)."""
+    from bxdf_lab.nodes import walk
+    others = [n for n in sorted(dir(bpy.types)) if n.startswith("ShaderNode") and
+              n not in walk.TRANSLATORS and n not in ("ShaderNodeTree", "ShaderNodeCustomGroup")]
+    made = [tree.nodes.new(name) for name in sorted(walk.TRANSLATORS) for _ in range(2)]
+    made += [tree.nodes.new("NodeReroute") for _ in range(3)]
+    for name in rng.permutation(others):
+        if len(made) == 2 * len(walk.TRANSLATORS) + 9:
+            break
+        try:
+            made.append(tree.nodes.new(str(name)))
+        except RuntimeError:  # abstract types and those of other trees
+            continue
+    return made
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_random_trees_of_every_node_kind_never_crash(tree, seed):
+    """Shader nodes linked at random (cycles, mismatched sockets and muted nodes included): the
+    translation ends, and each warning names the material."""
+    rng = np.random.default_rng(seed)
+    made = _node_mix(tree, rng)
+    made = [made[i] for i in rng.permutation(len(made))]
+    last_mix = max(i for i, n in enumerate(made) if n.bl_idname == "ShaderNodeMixShader")
+    made.append(made.pop(last_mix))  # the surface, fed by everything before it
+    # Mostly a DAG (each node fed by earlier ones, mostly by matching socket types), plus a few
+    # links back (cycles) and a few between any sockets (invalid).
+    for position, node in enumerate(made[1:], start=1):
+        earlier = [s for n in made[:position] for s in n.outputs]
+        for socket in node.inputs:
+            matching = [s for s in earlier if s.type == socket.type]
+            if rng.random() < 0.8 and matching:
+                tree.link(matching[rng.integers(len(matching))], socket)
+    for _ in range(4):
+        a, b = sorted(rng.choice(len(made), size=2, replace=False))
+        if made[b].outputs and made[a].inputs:
+            tree.link(made[b].outputs[0], made[a].inputs[rng.integers(len(made[a].inputs))])
+    tree.surface(made[-1])
+    for node in rng.choice(made, size=10, replace=False):
+        node.mute = True
+    t, graph = tree.translate()
+    assert len(t.coverage) >= 4  # the walk went beyond the surface's own node
+    assert all(w.startswith("material 'Tree': ") for w in t.warnings)
+    for i, node in enumerate(graph["nodes"]):  # evaluation order: references point backwards
+        refs = [v for v in node.values() if isinstance(v, dict)]
+        assert all(r["node"] < i for r in refs), node
+    assert {e["status"] for e in nodes.material_coverage(tree.material)} <= {
+        "exact", "approximate", "unsupported"}
