@@ -167,6 +167,12 @@ def test_add_shader_emission_and_holdout(tree):
     assert graph["closures"] == [{"model": "holdout", "weight": 1.0, "params": {}}]
 
 
+def test_an_emission_of_zero_strength_is_no_closure_at_all(tree):
+    tree.surface(tree.add("ShaderNodeEmission", Strength=0.0))
+    t, graph = tree.translate()
+    assert graph["emission"] == [0.0, 0.0, 0.0] and t.closure_counts == {}
+
+
 def test_material_without_nodes_is_cycles_diffuse_of_its_viewport_colour():
     material = bpy.data.materials.new("plain")
     material.diffuse_color = (0.3, 0.2, 0.1, 1.0)

@@ -30,6 +30,9 @@ for _name in NODE_MODULES:
         walk.TRANSLATORS[_idname] = _module
 
 
+NO_NODE_TREE = "(no node tree)"
+
+
 def translate(material, write_files=True):
     """The walk.Translation of `material`: from its active Cycles Material Output's Surface, or,
     for a material without nodes, the Diffuse BSDF of its viewport colour that Cycles renders.
@@ -58,10 +61,10 @@ def _without_nodes(translation):
     translation.graph.closures.append(
         {"model": "cycles_oren_nayar", "weight": 1.0,
          "params": {"color": [float(c) for c in material.diffuse_color[:3]], "roughness": 0.0}})
-    translation.lobes.append({"node": "", "model": "cycles_oren_nayar", "weight": 1.0,
+    translation.lobes.append({"node": NO_NODE_TREE, "model": "cycles_oren_nayar", "weight": 1.0,
                               "lobes": [("closure", 1, True)]})
     translation.closure_counts["#cycles_oren_nayar"] = 1
-    translation.coverage[""] = {"node": "", "type": "Material", "status": "exact",
+    translation.coverage[NO_NODE_TREE] = {"node": NO_NODE_TREE, "type": "Material", "status": "exact",
                                 "why": "no node tree: Cycles renders the viewport colour as a "
                                        "Diffuse BSDF"}
 

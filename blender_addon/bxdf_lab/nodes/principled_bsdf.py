@@ -2,6 +2,7 @@
 closure and the Transparent mix that Cycles adds for its Emission and Alpha inputs
 (PrincipledBsdfNode::expand)."""
 
+from . import emission
 from . import graph as g
 from .registry_params import from_sockets
 
@@ -21,10 +22,7 @@ def closures(scope, node, weight):
         scope.add_closure("cycles_transparent", graph.multiply(weight, graph.one_minus(alpha)),
                           {"color": (1.0, 1.0, 1.0)}, lobes=[("transparent", 1, True)], count=1)
         weight = graph.multiply(weight, alpha)
-    emission, strength = scope.input("Emission", "triple"), scope.input("Emission Strength", "float")
-    if ((g.is_reference(emission) or any(emission)) and
-            (g.is_reference(strength) or g.to_float(strength) != 0.0)):
-        scope.emit(graph.scale_colour(graph.scale_colour(emission, strength), weight), count=1)
+    emission.closures(scope, node, weight)  # as Cycles' expand: Emission, Emission Strength
 
     params = from_sockets(scope, MODEL, exclude=SPECIAL)
     params["distribution"] = node.distribution.lower()
