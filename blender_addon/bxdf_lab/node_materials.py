@@ -8,8 +8,8 @@ constant "emission"), the same material in the form every renderer build reads.
 Per mesh, for the UV maps its materials' graphs read: "uv_maps", a list aligned with the scene's
 "uv_map_names" ("" = the mesh's active render map), each None (the mesh has no such map) or
 {"name", "uvs": (L, 2) float32, "uv_indices": (T, 3) int32 into uvs, and for maps a Normal Map
-reads "tangents": (L, 3) float32 and "bitangent_signs": (L,) float32, indexed as uvs, from
-`mesh.calc_tangents`}; and "texspace_location", "texspace_size" ((3,) float32): Cycles' generated
+reads "tangents": (L, 4) float32 (object-space tangent, bitangent sign), indexed as uvs, from
+`mesh.calc_tangents`}; and "texture_space" ((6,) float32: location, size): Cycles' generated
 coordinates are (P_object − location) / (2·size) + 0.5.
 """
 
@@ -44,8 +44,8 @@ class NodeMaterials:
         """UV maps, tangents and texture space that the graphs of `materials` read on `mesh`
         (keys of the module docstring, with "uv_layers" keyed by graph UV map name until
         finish() aligns them); warnings go to the translations."""
-        out = {"texspace_location": np.array(mesh.texspace_location, dtype=np.float32),
-               "texspace_size": np.array(mesh.texspace_size, dtype=np.float32), "uv_layers": {}}
+        out = {"texture_space": np.array([*mesh.texspace_location, *mesh.texspace_size],
+                                         dtype=np.float32), "uv_layers": {}}
         corners = data["uv_indices"]
         for material in materials:
             translation = self._translation(material) if material is not None else None
@@ -80,12 +80,15 @@ class NodeMaterials:
                 translation.warn(None, (), f"mesh '{mesh.name}': no tangents for UV map "
                                  f"'{layer.name}' ({exc}); its normal maps are flat")
                 return out
-            tangents = np.empty(n_loops * 3, dtype=np.float32)
-            mesh.loops.foreach_get("tangent", tangents)
+            tangents = np.empty((n_loops, 4), dtype=np.float32)
+            xyz = np.empty(n_loops * 3, dtype=np.float32)
+            mesh.loops.foreach_get("tangent", xyz)
+            tangents[:, :3] = xyz.reshape(n_loops, 3)
             signs = np.empty(n_loops, dtype=np.float32)
             mesh.loops.foreach_get("bitangent_sign", signs)
+            tangents[:, 3] = signs
             mesh.free_tangents()
-            out.update(tangents=tangents.reshape(n_loops, 3), bitangent_signs=signs)
+            out["tangents"] = tangents
         return out
 
     def finish(self, scene_data):

@@ -58,12 +58,10 @@ def test_uv_maps_tangents_and_texture_space_follow_the_graph():
     assert render_map["name"] == "UVMap" and "tangents" not in render_map
     assert detail["name"] == "Detail" and detail["uvs"].shape == (4, 2)
     np.testing.assert_array_equal(detail["uv_indices"], mesh["uv_indices"])
-    assert detail["tangents"].shape == (4, 3) and detail["bitangent_signs"].shape == (4,)
-    # a plane in z = 0 with Blender's default UVs: tangent along +x, bitangent along +y
-    np.testing.assert_allclose(detail["tangents"], np.tile([1.0, 0.0, 0.0], (4, 1)), atol=1e-6)
-    np.testing.assert_allclose(detail["bitangent_signs"], 1.0)
-    np.testing.assert_allclose(mesh["texspace_location"], plane.data.texspace_location)
-    np.testing.assert_allclose(mesh["texspace_size"], plane.data.texspace_size)
+    # a plane in z = 0 with Blender's default UVs: tangent along +x, bitangent (sign +1) along +y
+    np.testing.assert_allclose(detail["tangents"], np.tile([1.0, 0.0, 0.0, 1.0], (4, 1)), atol=1e-6)
+    np.testing.assert_allclose(mesh["texture_space"], [*plane.data.texspace_location,
+                                                       *plane.data.texspace_size])
     (entry,) = data["materials"]
     nm = next(n for n in entry["graph"]["nodes"] if n["op"] == "normal_map")
     assert data["uv_map_names"][nm["map"]] == "Detail"
