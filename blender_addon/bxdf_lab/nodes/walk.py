@@ -13,7 +13,6 @@ from . import registry_params
 # Filled by nodes/__init__.py: {bl_idname: translator module}.
 TRANSLATORS = {}
 
-SKIPPED_TYPES = {"NodeReroute", "NodeGroupInput", "NodeGroupOutput", "NodeFrame"}
 FLOAT_SOCKETS = {"VALUE", "INT", "BOOLEAN"}
 
 
@@ -42,8 +41,6 @@ def default_text(socket):
 
 
 def describe_value(value):
-    if g.is_reference(value):
-        return "a linked value"
     if isinstance(value, tuple):
         return "(" + ", ".join(f"{c:g}" for c in value) + ")"
     return f"{value:g}"
@@ -61,7 +58,7 @@ class Translation:
         self.lobes = []         # per closure: Cycles' closure allocation (closure_budget.py)
         self.closure_counts = {}  # node → slots Cycles reserves for it (closure_budget.py)
         self.uv_maps = [""]     # UV map names the graph reads; "" = the active render map
-        self._cache = {}
+        self.cache = {}         # (group path, node, output) → value
         self._visiting = set()
 
     # ---- reporting ----------------------------------------------------------------------
@@ -160,8 +157,8 @@ class Translation:
                       f"{default_text(socket)} is used")
             return g.convert(socket_default(socket), kind)
         key = (tuple(n.name for n in node_path), node.name, out.identifier)
-        if key in self._cache:
-            return g.convert(self._cache[key], kind)
+        if key in self.cache:
+            return g.convert(self.cache[key], kind)
         if key in self._visiting:
             self.warn(consumer, path, f"input '{socket.name}' depends on itself (a cyclic node "
                       f"tree); {default_text(socket)} is used")
@@ -178,7 +175,7 @@ class Translation:
         finally:
             self._visiting.discard(key)
         self.note(node, node_path, "exact", "")
-        self._cache[key] = result
+        self.cache[key] = result
         return g.convert(result, kind)
 
     def closures(self, socket, path, consumer, weight):
@@ -295,7 +292,7 @@ class Scope:
     def memo(self, what, make):
         """make() once per node and `what` (a node whose outputs share one graph node)."""
         key = (tuple(n.name for n in self.path), self.node.name, "#" + what)
-        cache = self.translation._cache
+        cache = self.translation.cache
         if key not in cache:
             cache[key] = make()
         return cache[key]
