@@ -10,6 +10,8 @@ BL_IDNAMES = ("ShaderNodeTexCoord",)
 def value(scope, node, output):
     graph = scope.graph
     kind = output.identifier
+    if node.from_instancer:
+        scope.warn("'From Instancer' is not translated; the object's own coordinates are used")
     if kind == "UV":
         return graph.add("uv", ["vector"], map=scope.uv_map(""))["vector"]
     if kind == "Generated":
