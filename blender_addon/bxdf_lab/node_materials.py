@@ -72,13 +72,15 @@ class NodeMaterials:
         n_loops = len(mesh.loops)
         uvs = np.empty(n_loops * 2, dtype=np.float32)
         layer.data.foreach_get("uv", uvs)
-        out = {"name": layer.name, "uvs": uvs.reshape(n_loops, 2), "uv_indices": corners}
+        layer_name = layer.name  # the layer's Python object does not survive calc_tangents
+        out = {"name": layer_name, "uvs": uvs.reshape(n_loops, 2), "uv_indices": corners}
         if with_tangents:
             try:
-                mesh.calc_tangents(uvmap=layer.name)
+                mesh.calc_tangents(uvmap=layer_name)
             except RuntimeError as exc:  # n-gons: Blender computes tangents of tris and quads only
+                reason = str(exc).strip().removeprefix("Error: ")
                 translation.warn(None, (), f"mesh '{mesh.name}': no tangents for UV map "
-                                 f"'{layer.name}' ({exc}); its normal maps are flat")
+                                 f"'{layer_name}' ({reason}); Normal Map nodes on it have none to read")
                 return out
             tangents = np.empty((n_loops, 4), dtype=np.float32)
             xyz = np.empty(n_loops * 3, dtype=np.float32)

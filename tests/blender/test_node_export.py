@@ -1,6 +1,8 @@
 """Export of node-tree materials: graphs, UV maps and tangents, Cycles' closure budget, warnings;
 and renders through BXDF_LAB against Cycles for the graphs this renderer build reads."""
 
+import math
+
 import bpy
 import numpy as np
 import pytest
@@ -77,6 +79,24 @@ def test_a_uv_map_the_mesh_lacks_is_a_warning():
     assert data["meshes"][0]["uv_maps"][1] is None
     assert data["warnings"] == ["material 'elsewhere': mesh 'plane' has no UV map "
                                 "'Nope'; its coordinates read as (0, 0), as in Cycles"]
+
+
+def test_an_ngon_mesh_has_no_tangents_and_says_so():
+    tree = Tree("ngon")
+    glossy = tree.surface(tree.add("ShaderNodeBsdfGlossy"))
+    _image_through(tree, "ShaderNodeNormalMap", "", glossy.inputs["Normal"])
+    mesh = bpy.data.meshes.new("pentagon")
+    mesh.from_pydata([(math.cos(a), math.sin(a), 0.0) for a in np.arange(5) * 2 * math.pi / 5],
+                     [], [(0, 1, 2, 3, 4)])
+    mesh.uv_layers.new(name="UVMap")
+    mesh.materials.append(tree.material)
+    bpy.context.scene.collection.objects.link(bpy.data.objects.new("pentagon", mesh))
+    data = _export()
+    (render_map,) = data["meshes"][0]["uv_maps"]
+    assert render_map["name"] == "UVMap" and "tangents" not in render_map
+    (warning,) = data["warnings"]
+    assert warning.startswith("material 'ngon': mesh 'pentagon': no tangents for UV map 'UVMap' (")
+    assert warning.endswith("); Normal Map nodes on it have none to read")
 
 
 def _all_lobes_principled(name):
