@@ -129,6 +129,31 @@ def test_a_larger_shader_elsewhere_in_the_scene_keeps_the_clearcoat():
     assert clearcoats == [1.0, 0.0]
 
 
+@pytest.mark.parametrize("bigger_shader_elsewhere", [False, True])
+def test_the_clearcoat_budget_is_what_cycles_renders(bigger_shader_elsewhere, tmp_path):
+    """The export drops the clearcoat exactly when Cycles' image of the material equals its image
+    with Clearcoat 0."""
+    tree = _all_lobes_principled("everything")
+    principled = tree.nodes["Principled BSDF"]
+    principled.inputs["Clearcoat Roughness"].default_value = 0.5
+    scene = _scene(tree.material, tmp_path)
+    if bigger_shader_elsewhere:  # out of the camera's view, it only raises the budget
+        other = Tree("mixed")
+        mix = other.surface(other.add("ShaderNodeMixShader"))
+        other.link(other.add("ShaderNodeBsdfPrincipled").outputs[0], mix.inputs[1])
+        other.link(other.add("ShaderNodeBsdfGlass").outputs[0], mix.inputs[2])
+        _plane(other.material, "other", (0, 0, -50))
+    data = _export()
+    kept = next(m for m in data["materials"] if m["name"] == "everything")[
+        "graph"]["closures"][0]["params"]["clearcoat"] == 1.0
+    assert kept == bigger_shader_elsewhere
+    with_clearcoat = _render(scene, "CYCLES", str(tmp_path / "with.exr"))
+    principled.inputs["Clearcoat"].default_value = 0.0
+    without = _render(scene, "CYCLES", str(tmp_path / "without.exr"))
+    cycles_kept = np.abs(with_clearcoat - without).max() > 1e-3
+    assert cycles_kept == kept
+
+
 def test_a_model_missing_from_the_registry_is_a_warning(monkeypatch):
     from bxdf_lab.nodes import registry_params
     models = dict(registry_params.models())
