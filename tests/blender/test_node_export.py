@@ -215,6 +215,12 @@ def _emission(tree):
     tree.surface(tree.add("ShaderNodeEmission", Color=(0.6, 0.3, 0.1, 1.0), Strength=2.0))
 
 
+def _colour_into_the_surface(tree):
+    rgb = tree.add("ShaderNodeRGB")
+    rgb.outputs[0].default_value = (0.6, 0.3, 0.1, 1.0)
+    tree.surface(rgb)
+
+
 def _no_nodes(tree):
     tree.material.use_nodes = False
     tree.material.diffuse_color = (0.2, 0.6, 0.4, 1.0)
@@ -222,9 +228,9 @@ def _no_nodes(tree):
 
 @pytest.mark.parametrize("build", [
     _diffuse, _glossy("GGX"), _glossy("BECKMANN"), _anisotropic_without_anisotropy, _emission,
-    _no_nodes, _constants_through_reroute_muted_node_and_group,
+    _no_nodes, _constants_through_reroute_muted_node_and_group, _colour_into_the_surface,
 ], ids=["diffuse", "glossy_ggx", "glossy_beckmann", "anisotropic_0", "emission", "no_nodes",
-        "reroute_muted_group"])
+        "reroute_muted_group", "colour_into_surface"])
 def test_node_material_renders_like_cycles(build, bxdf_render, tmp_path):
     tree = Tree("node material")
     build(tree)

@@ -173,6 +173,19 @@ def test_an_emission_of_zero_strength_is_no_closure_at_all(tree):
     assert graph["emission"] == [0.0, 0.0, 0.0] and t.closure_counts == {}
 
 
+def test_a_value_linked_into_a_shader_input_emits_it_as_cycles_does(tree):
+    add = tree.surface(tree.add("ShaderNodeAddShader"))
+    rgb = tree.add("ShaderNodeRGB")
+    rgb.outputs[0].default_value = (0.5, 0.25, 0.125, 1.0)
+    value = tree.add("ShaderNodeValue")
+    value.outputs[0].default_value = 2.0
+    tree.link(rgb.outputs[0], add.inputs[0])
+    tree.link(value.outputs[0], add.inputs[1])
+    t, graph = tree.translate()
+    assert graph["emission"] == approx([2.5, 2.25, 2.125]) and graph["closures"] == []
+    assert t.warnings == []
+
+
 def test_material_without_nodes_is_cycles_diffuse_of_its_viewport_colour():
     material = bpy.data.materials.new("plain")
     material.diffuse_color = (0.3, 0.2, 0.1, 1.0)

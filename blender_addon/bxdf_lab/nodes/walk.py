@@ -185,8 +185,7 @@ class Translation:
             return
         _, node, out, node_path = found
         if out.type != "SHADER":
-            self.warn(consumer, path, f"shader input '{socket.name}' is fed by a value output; "
-                      "it contributes nothing")
+            self._value_as_emission(socket, path, consumer, out, weight)
             return
         key = (tuple(n.name for n in node_path), node.name, "closure")
         if key in self._visiting:
@@ -207,6 +206,18 @@ class Translation:
         finally:
             self._visiting.discard(key)
         self.note(node, node_path, "exact", "")
+
+
+    def _value_as_emission(self, socket, path, consumer, out, weight):
+        """A value linked into a shader input: Cycles inserts an Emission node, the value as its
+        Strength (a float) or Color (anything else), the other input 1 (ShaderGraph::connect)."""
+        graph = self.graph
+        if out.type in FLOAT_SOCKETS:
+            radiance = graph.scale_colour((1.0, 1.0, 1.0), self.value(socket, path, consumer, "float"))
+        else:
+            radiance = self.value(socket, path, consumer, "triple")
+        graph.emission_terms.append(graph.scale_colour(radiance, weight))
+        self.closure_counts[f"{qualified_name(consumer, path)}:{socket.identifier}#emission"] = 1
 
 
 def qualified_name(node, path):
