@@ -1,16 +1,14 @@
 """Export of materials that render from their node trees (material_source.py): their material
 graphs (nodes/), Cycles' closure budget for the scene, and the mesh data the graphs read.
 
-Per material: {"name", "graph"} (docs/material-graph.md); when the graph is one closure of a
-registry model with weight 1, constant parameters and no normal, also {"model", "params"} (and a
-constant "emission"), the same material in the form every renderer build reads.
+Per material: {"name", "graph"} (docs/material-graph.md).
 
 Per mesh, for the UV maps its materials' graphs read: "uv_maps", a list aligned with the scene's
-"uv_map_names" ("" = the mesh's active render map), each None (the mesh has no such map) or
-{"name", "uvs": (L, 2) float32, "uv_indices": (T, 3) int32 into uvs, and for maps a Normal Map
-reads "tangents": (L, 4) float32 (object-space tangent, bitangent sign), indexed as uvs, from
-`mesh.calc_tangents`}; and "texture_space" ((6,) float32: location, size): Cycles' generated
-coordinates are (P_object − location) / (2·size) + 0.5.
+"uv_map_names" ("" = the mesh's active render map) of per-corner UVs ((T·3, 2) float32; zeros
+where the mesh has no such map, as Cycles reads (0, 0)); "tangents", aligned the same way, None or,
+for a map a Normal Map reads, per-corner (T·3, 4) float32: the object-space tangent and the
+bitangent sign from `mesh.calc_tangents`; and "texture_space" ((2, 3) float32: location, size):
+Cycles' generated coordinates are (P_object − location) / (2·size) + 0.5.
 """
 
 import numpy as np
@@ -44,7 +42,7 @@ class NodeMaterials:
         """UV maps, tangents and texture space that the graphs of `materials` read on `mesh`
         (keys of the module docstring, with "uv_layers" keyed by graph UV map name until
         finish() aligns them); warnings go to the translations."""
-        out = {"texture_space": np.array([*mesh.texspace_location, *mesh.texspace_size],
+        out = {"texture_space": np.array([mesh.texspace_location, mesh.texspace_size],
                                          dtype=np.float32), "uv_layers": {}}
         corners = data["uv_indices"]
         for material in materials:
@@ -73,7 +71,7 @@ class NodeMaterials:
         uvs = np.empty(n_loops * 2, dtype=np.float32)
         layer.data.foreach_get("uv", uvs)
         layer_name = layer.name  # the layer's Python object does not survive calc_tangents
-        out = {"name": layer_name, "uvs": uvs.reshape(n_loops, 2), "uv_indices": corners}
+        out = {"name": layer_name, "uvs": uvs.reshape(n_loops, 2)[corners.ravel()]}
         if with_tangents:
             try:
                 mesh.calc_tangents(uvmap=layer_name)
@@ -90,7 +88,7 @@ class NodeMaterials:
             mesh.loops.foreach_get("bitangent_sign", signs)
             tangents[:, 3] = signs
             mesh.free_tangents()
-            out["tangents"] = tangents
+            out["tangents"] = tangents[corners.ravel()]
         return out
 
     def finish(self, scene_data):
@@ -107,7 +105,6 @@ class NodeMaterials:
                 if node["op"] in ("uv", "normal_map"):
                     node["map"] = scene_index[node["map"]]
             entry["graph"] = graph
-            entry.update(_single_model_form(graph))
             for closure in graph["closures"]:
                 model = closure["model"]
                 if model != "holdout" and model not in registry_params.models():
@@ -116,25 +113,10 @@ class NodeMaterials:
             scene_data["warnings"].extend(translation.warnings)
         for mesh in scene_data["meshes"]:
             layers = mesh.pop("uv_layers", {})
-            mesh["uv_maps"] = [layers.get(name) for name in names]
+            corners = 3 * len(mesh["triangles"])
+            mesh["uv_maps"] = [layers[n]["uvs"] if layers.get(n) else
+                               np.zeros((corners, 2), dtype=np.float32) for n in names]
+            mesh["tangents"] = [(layers.get(n) or {}).get("tangents") for n in names]
         scene_data["uv_map_names"] = names
         scene_data["closure_budget"] = budget
 
-
-def _single_model_form(graph):
-    """{"model", "params", "emission"} when the graph is exactly one registry model with weight
-    1, constant parameters and the smooth normal (or no closure, rendered black), else {}."""
-    emission = graph["emission"]
-    if isinstance(emission, dict) or graph["nodes"]:
-        return {}
-    closures = graph["closures"]
-    out = {"emission": list(emission)} if any(emission) else {}
-    if not closures:
-        return out or {"model": "lambertian", "params": {"reflectance": 0.0}}
-    if len(closures) != 1:
-        return {}
-    closure = closures[0]
-    if (set(closure) != {"model", "weight", "params"} or closure["weight"] != 1.0 or
-            closure["model"] not in registry_params.models()):
-        return {}
-    return {**out, "model": closure["model"], "params": dict(closure["params"])}

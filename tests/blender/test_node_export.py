@@ -56,18 +56,21 @@ def test_uv_maps_tangents_and_texture_space_follow_the_graph():
     data = _export()
     assert data["uv_map_names"] == ["", "Detail"] and data["warnings"] == []
     (mesh,) = data["meshes"]
+    corners = mesh["uv_indices"].ravel()  # the active map's per-loop UVs, indexed per corner
     render_map, detail = mesh["uv_maps"]
-    assert render_map["name"] == "UVMap" and "tangents" not in render_map
-    assert detail["name"] == "Detail" and detail["uvs"].shape == (4, 2)
-    np.testing.assert_array_equal(detail["uv_indices"], mesh["uv_indices"])
+    np.testing.assert_array_equal(render_map, mesh["uvs"][corners])
+    assert detail.shape == (6, 2) and detail.dtype == np.float32
+    np.testing.assert_array_equal(
+        detail, np.array([l.uv for l in plane.data.uv_layers["Detail"].data])[corners])
+    assert mesh["tangents"][0] is None
     # a plane in z = 0 with Blender's default UVs: tangent along +x, bitangent (sign +1) along +y
-    np.testing.assert_allclose(detail["tangents"], np.tile([1.0, 0.0, 0.0, 1.0], (4, 1)), atol=1e-6)
-    np.testing.assert_allclose(mesh["texture_space"], [*plane.data.texspace_location,
-                                                       *plane.data.texspace_size])
+    np.testing.assert_allclose(mesh["tangents"][1], np.tile([1.0, 0.0, 0.0, 1.0], (6, 1)), atol=1e-6)
+    np.testing.assert_allclose(mesh["texture_space"], [plane.data.texspace_location,
+                                                       plane.data.texspace_size])
     (entry,) = data["materials"]
     nm = next(n for n in entry["graph"]["nodes"] if n["op"] == "normal_map")
     assert data["uv_map_names"][nm["map"]] == "Detail"
-    assert "model" not in entry  # a graph with nodes has no single-model form
+    assert set(entry) == {"name", "graph"}
 
 
 def test_a_uv_map_the_mesh_lacks_is_a_warning():
@@ -76,7 +79,7 @@ def test_a_uv_map_the_mesh_lacks_is_a_warning():
     _image_through(tree, "ShaderNodeUVMap", "Nope", diffuse.inputs["Color"])
     _plane(tree.material)
     data = _export()
-    assert data["meshes"][0]["uv_maps"][1] is None
+    np.testing.assert_array_equal(data["meshes"][0]["uv_maps"][1], np.zeros((6, 2)))
     assert data["warnings"] == ["material 'elsewhere': mesh 'plane' has no UV map "
                                 "'Nope'; its coordinates read as (0, 0), as in Cycles"]
 
@@ -92,8 +95,7 @@ def test_an_ngon_mesh_has_no_tangents_and_says_so():
     mesh.materials.append(tree.material)
     bpy.context.scene.collection.objects.link(bpy.data.objects.new("pentagon", mesh))
     data = _export()
-    (render_map,) = data["meshes"][0]["uv_maps"]
-    assert render_map["name"] == "UVMap" and "tangents" not in render_map
+    assert data["meshes"][0]["tangents"] == [None]
     (warning,) = data["warnings"]
     assert warning.startswith("material 'ngon': mesh 'pentagon': no tangents for UV map 'UVMap' (")
     assert warning.endswith("); Normal Map nodes on it have none to read")
@@ -165,7 +167,6 @@ def test_a_model_missing_from_the_registry_is_a_warning(monkeypatch):
     data = _export()
     assert data["warnings"] == ["material 'rough': model 'cycles_oren_nayar' is not in this build "
                                 "of bxdf (bxdf.models()); the renderer cannot render it"]
-    assert "model" not in data["materials"][0]
 
 
 # ---- renders: node materials through BXDF_LAB against Cycles ---------------------------------
