@@ -7,6 +7,7 @@ UVs (texel centres, texel edges and between) with no lighting at all: both rende
 noise-free and must agree to float precision.
 """
 
+
 import math
 
 import bpy
@@ -15,48 +16,32 @@ import pytest
 
 from bxdf_lab import engine
 from test_nodes import Tree
-
-SIZE = 16
+from test_render import _render as render_rgba
+from test_render import _scene
 TEXELS = 4
 
 
 def _camera_scene(material, tmp_path):
-    scene = bpy.context.scene
-    mesh = bpy.data.meshes.new("plane")
-    mesh.from_pydata([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [], [(0, 1, 2, 3)])
-    uv = mesh.uv_layers.new(name="UVMap")
+    """test_render's scene (a plane under a sun, deterministic settings) at one sample per pixel
+    (Cycles' first sample is the pixel centre), the sun turned 30° about Z, the plane shrunk to
+    2 × 2 with UVs spanning [0, 1]² and the camera looking straight down at exactly it."""
+    scene = _scene(material, tmp_path)
+    scene.bxdf_lab_render.samples = scene.cycles.samples = 1
+    bpy.data.objects["sun"].rotation_euler.z = math.radians(30.0)
+    plane = bpy.data.objects["plane"]
+    for vertex in plane.data.vertices:  # the mesh, not the object: an unscaled object
+        vertex.co *= 0.1
+    uv = plane.data.uv_layers.new(name="UVMap")
     for loop, coords in zip(uv.data, ((0, 0), (1, 0), (1, 1), (0, 1))):
         loop.uv = coords
-    mesh.materials.append(material)
-    scene.collection.objects.link(bpy.data.objects.new("plane", mesh))
-    camera = bpy.data.cameras.new("cam")
+    camera = scene.camera.data
     camera.lens, camera.sensor_width, camera.sensor_fit = 50.0, 36.0, "HORIZONTAL"
-    cam = bpy.data.objects.new("cam", camera)
-    cam.location = (0, 0, 50.0 / 18.0)  # the view's half-width at the plane is 1
-    scene.collection.objects.link(cam)
-    scene.camera = cam
-    r = scene.render
-    r.resolution_x = r.resolution_y = SIZE
-    r.resolution_percentage = 100
-    r.image_settings.file_format, r.image_settings.color_depth = "OPEN_EXR", "32"
-    r.film_transparent = False
-    scene.view_settings.view_transform = "Standard"
-    settings = scene.bxdf_lab_render
-    settings.samples, settings.max_bounces, settings.pixel_filter, settings.seed = 1, 0, "PIXEL_CENTER", 3
-    c = scene.cycles
-    c.samples, c.max_bounces, c.use_denoising, c.use_adaptive_sampling = 1, 0, False, False
-    c.pixel_filter_type, c.filter_width = "GAUSSIAN", 0.01  # pixel centres, as PIXEL_CENTER
+    scene.camera.location = (0, 0, 50.0 / 18.0)  # the view's half-width at the plane is 1
     return scene
 
 
 def _render(scene, engine_id, path):
-    scene.render.engine = engine_id
-    scene.render.filepath = path
-    bpy.ops.render.render(write_still=True)
-    image = bpy.data.images.load(path)
-    pixels = np.empty(SIZE * SIZE * 4, dtype=np.float32)
-    image.pixels.foreach_get(pixels)
-    return pixels.reshape(SIZE, SIZE, 4)[..., :3]
+    return render_rgba(scene, engine_id, path)[..., :3]
 
 
 def _texture_file(tmp_path, colorspace):
@@ -124,17 +109,6 @@ def test_an_srgb_image_is_linearised_like_cycles(tmp_path):
     np.testing.assert_allclose(ours, cycles, rtol=2e-3, atol=1e-4)
 
 
-def _lit_scene(material, tmp_path):
-    """A sun at 40° over the plane, seen from above: direct light only, noise-free."""
-    scene = _camera_scene(material, tmp_path)
-    sun = bpy.data.lights.new("sun", "SUN")
-    sun.energy, sun.angle = math.pi, 0.0
-    sun_obj = bpy.data.objects.new("sun", sun)
-    sun_obj.rotation_euler = (math.radians(40.0), 0, math.radians(30.0))
-    scene.collection.objects.link(sun_obj)
-    return scene
-
-
 def _normal_texture(tmp_path):
     """A tangent-space normal map of tilted facets (Non-Color)."""
     ys, xs = np.mgrid[0:TEXELS, 0:TEXELS]
@@ -158,7 +132,7 @@ def test_a_normal_map_matches_cycles(tmp_path):
     image.image, image.interpolation = _normal_texture(tmp_path), "Closest"
     tree.link(image.outputs["Color"], normal_map.inputs["Color"])
     tree.link(normal_map.outputs[0], glossy.inputs["Normal"])
-    scene = _lit_scene(tree.material, tmp_path)
+    scene = _camera_scene(tree.material, tmp_path)
     ours = _render(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
     cycles = _render(scene, "CYCLES", str(tmp_path / "cycles.exr"))
     assert np.ptp(cycles) > 0.05  # the normal map does vary the shading
@@ -175,7 +149,7 @@ def test_a_mix_shader_with_a_texture_factor_matches_cycles(tmp_path):
               mix.inputs[1])
     tree.link(tree.add("ShaderNodeBsdfGlossy", Color=(0.2, 0.5, 0.9, 1.0), Roughness=0.4).outputs[0],
               mix.inputs[2])
-    scene = _lit_scene(tree.material, tmp_path)
+    scene = _camera_scene(tree.material, tmp_path)
     ours = _render(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
     cycles = _render(scene, "CYCLES", str(tmp_path / "cycles.exr"))
     assert np.ptp(cycles) > 0.05
