@@ -63,7 +63,10 @@ def lobes(params):
     over = lambda v: _active(v, lambda x: g.to_float(x) > CUTOFF)
     single_glass = (params.get("distribution") == "ggx" or
                     _active(roughness, lambda r: g.to_float(r) <= 5e-2))
-    out = [("diffuse", 1, over(diffuse_weight) and over(base)),
+    # Cycles tests the base colour's channel average (of the colour mixed towards Subsurface
+    # Color, which a subsurface of 0 leaves as the base colour).
+    base_average = _active(base, lambda c: sum(g.to_triple(c)) / 3.0 > CUTOFF)
+    out = [("diffuse", 1, over(diffuse_weight) and base_average),
            ("sheen", 1, over(diffuse_weight) and over(value("sheen"))),
            ("specular", 2, over(specular_weight) and (over(value("specular", 0.5)) or
                                                       over(metallic)))]
