@@ -1,5 +1,6 @@
-"""Node materials whose graphs have value nodes (textures, normal maps, texture-weighted mixes),
-rendered by BXDF_LAB and by Cycles: the images agree within noise.
+"""Node materials whose graphs have value nodes (textures, normal maps, texture-weighted mixes,
+colour and math nodes, coordinates and mappings), rendered by BXDF_LAB and by Cycles: the images
+agree within noise.
 
 Texture lookups: a camera looking straight down sees a 2 × 2 plane whose UVs span [0, 1]² exactly, its
 Emission colour read from an image through a Mapping node, so that pixel centres sample chosen
@@ -154,3 +155,137 @@ def test_a_mix_shader_with_a_texture_factor_matches_cycles(tmp_path):
     cycles = _render(scene, "CYCLES", str(tmp_path / "cycles.exr"))
     assert np.ptp(cycles) > 0.05
     np.testing.assert_allclose(ours, cycles, rtol=5e-3, atol=1e-4)
+
+
+# ---- value nodes: an Emission colour computed from the UVs, seen at pixel centres --------------
+
+def _uv(tree):
+    coords = tree.add("ShaderNodeTexCoord")
+    separate = tree.add("ShaderNodeSeparateXYZ")
+    tree.link(coords.outputs["UV"], separate.inputs[0])
+    return coords.outputs["UV"], separate.outputs["X"], separate.outputs["Y"]
+
+
+def _math(tree):
+    _, u, _ = _uv(tree)
+    node = tree.add("ShaderNodeMath")
+    node.operation, node.use_clamp = "POWER", True
+    node.inputs[1].default_value = 2.2
+    tree.link(u, node.inputs[0])
+    return node.outputs[0]
+
+
+def _mix_rgb(tree):
+    uv, u, _ = _uv(tree)
+    node = tree.add("ShaderNodeMixRGB")
+    node.blend_type = "OVERLAY"
+    node.inputs["Color1"].default_value = (0.2, 0.6, 0.4, 1.0)
+    tree.link(u, node.inputs["Fac"])
+    tree.link(uv, node.inputs["Color2"])
+    return node.outputs[0]
+
+
+def _colour_op(bl_idname, **inputs):
+    def build(tree):
+        uv, _, _ = _uv(tree)
+        node = tree.add(bl_idname, **inputs)
+        tree.link(uv, node.inputs["Color"])
+        return node.outputs[0]
+    return build
+
+
+def _swizzle(tree):
+    _, u, v = _uv(tree)
+    combine = tree.add("ShaderNodeCombineXYZ", Z=0.3)
+    tree.link(v, combine.inputs["X"])
+    tree.link(u, combine.inputs["Y"])
+    return combine.outputs[0]
+
+
+def _ramp(interpolation):
+    def build(tree):
+        _, u, _ = _uv(tree)
+        node = tree.add("ShaderNodeValToRGB")
+        ramp = node.color_ramp
+        ramp.interpolation = interpolation
+        ramp.elements[0].color = (0.9, 0.1, 0.1, 1.0)
+        middle = ramp.elements.new(0.4)
+        middle.color = (0.1, 0.8, 0.2, 1.0)
+        ramp.elements[-1].color = (0.2, 0.3, 0.9, 1.0)
+        tree.link(u, node.inputs["Fac"])
+        return node.outputs[0]
+    return build
+
+
+def _view_factor(bl_idname, output, **inputs):
+    def build(tree):
+        return tree.add(bl_idname, **inputs).outputs[output]
+    return build
+
+
+def _mapped_generated(tree):
+    coords = tree.add("ShaderNodeTexCoord")
+    mapping = tree.add("ShaderNodeMapping")
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, 0.5)
+    mapping.inputs["Scale"].default_value = (1.5, 0.7, 1.0)
+    mapping.inputs["Location"].default_value = (0.6, 0.2, 0.0)  # keeps the colour positive
+    tree.link(coords.outputs["Generated"], mapping.inputs["Vector"])
+    return mapping.outputs[0]
+
+
+def _object_coordinates(tree):
+    mapping = tree.add("ShaderNodeMapping")
+    mapping.vector_type = "TEXTURE"
+    mapping.inputs["Location"].default_value = (-1.0, -1.0, -1.0)
+    mapping.inputs["Scale"].default_value = (2.0, 2.0, 2.0)
+    tree.link(tree.add("ShaderNodeTexCoord").outputs["Object"], mapping.inputs["Vector"])
+    return mapping.outputs[0]
+
+
+def _named_uv_map(tree):
+    node = tree.add("ShaderNodeUVMap")
+    node.uv_map = "UVMap"
+    return node.outputs[0]
+
+
+def _unified_mix(tree):
+    uv, u, _ = _uv(tree)
+    node = tree.add("ShaderNodeMix")
+    node.data_type, node.blend_type = "RGBA", "MULTIPLY"
+    tree.link(u, node.inputs["Factor"])
+    node.inputs[6].default_value = (0.9, 0.5, 0.2, 1.0)  # A (colour)
+    tree.link(uv, node.inputs[7])                         # B (colour)
+    return node.outputs[2]
+
+
+VALUE_CASES = {
+    "math_power": _math,
+    "mix_rgb_overlay": _mix_rgb,
+    "invert": _colour_op("ShaderNodeInvert", Fac=0.7),
+    "gamma": _colour_op("ShaderNodeGamma", Gamma=2.2),
+    "bright_contrast": _colour_op("ShaderNodeBrightContrast", Bright=0.1, Contrast=0.3),
+    "hue_saturation": _colour_op("ShaderNodeHueSaturation", Hue=0.3, Saturation=0.8, Value=1.1),
+    "separate_combine_xyz": _swizzle,
+    "color_ramp_linear": _ramp("LINEAR"),
+    "color_ramp_constant": _ramp("CONSTANT"),
+    "color_ramp_ease": _ramp("EASE"),
+    "fresnel": _view_factor("ShaderNodeFresnel", 0, IOR=1.5),
+    "layer_weight_facing": _view_factor("ShaderNodeLayerWeight", "Facing", Blend=0.3),
+    "generated_mapping": _mapped_generated,
+    "object_texture_mapping": _object_coordinates,
+    "uv_map": _named_uv_map,
+    "mix_multiply": _unified_mix,
+}
+
+
+@pytest.mark.parametrize("case", VALUE_CASES)
+def test_value_nodes_match_cycles(case, tmp_path):
+    tree = Tree(case)
+    emission = tree.surface(tree.add("ShaderNodeEmission"))
+    tree.link(VALUE_CASES[case](tree), emission.inputs["Color"])
+    scene = _camera_scene(tree.material, tmp_path)
+    ours = _render(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
+    assert engine.last_error == ""
+    cycles = _render(scene, "CYCLES", str(tmp_path / "cycles.exr"))
+    assert np.ptp(cycles) > 5e-4  # the value does vary over the image (Fresnel the least)
+    np.testing.assert_allclose(ours, cycles, rtol=1e-4, atol=1e-5)
