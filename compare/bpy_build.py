@@ -48,8 +48,12 @@ def _sphere_mesh(sphere: Sphere):
 
 
 def _quad_mesh(quad: Quad):
+    """The quad with UVs (0, 0), (1, 0), (1, 1), (0, 1) at its corners (for textured materials)."""
     mesh = bpy.data.meshes.new(quad.name)
     mesh.from_pydata([tuple(map(float, c)) for c in quad.corners], [], [(0, 1, 2, 3)])
+    uv_layer = mesh.uv_layers.new(name="UVMap")
+    for loop, uv in zip(uv_layer.data, ((0, 0), (1, 0), (1, 1), (0, 1))):
+        loop.uv = uv
     return mesh
 
 

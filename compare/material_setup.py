@@ -7,6 +7,9 @@ from __future__ import annotations
 
 import bpy
 
+from . import node_recipes
+from .scene_spec import NODES
+
 OPERATOR_LABELS = {"CYCLES": "Set Up Cycles Material", "POVRAY_RENDER": "Set Up POV-Ray Material"}
 ADDON_LABEL_FIELDS = {"CYCLES": "cycles_label", "POVRAY_RENDER": "pov_label"}
 
@@ -40,7 +43,10 @@ def addon_operator(label):
 def setup(material, obj, model, params, engine) -> str:
     """Assigns the model; for CYCLES / POVRAY_RENDER runs the add-on's set-up operator on `obj`'s
     `material`. Returns the add-on's label for the engine ("exact" / "approximate"; "exact" for
-    BXDF_LAB, which renders the model itself)."""
+    BXDF_LAB, which renders the model itself). A node material (scene_spec.NODES) gets its node
+    tree for every engine."""
+    if model == NODES:
+        return _node_setup(material, params["recipe"], engine)
     api = addon_api()
     api.assign(material, model, **params)
     if engine == "BXDF_LAB":
@@ -53,6 +59,21 @@ def setup(material, obj, model, params, engine) -> str:
         raise RuntimeError(f"{OPERATOR_LABELS[engine]} returned {result} for "
                            f"material '{material.name}'")
     return getattr(material.bxdf_lab, ADDON_LABEL_FIELDS[engine])
+
+
+def _node_setup(material, recipe, engine) -> str:
+    """Builds the recipe's node tree. Cycles renders it ("exact"); BXDF_LAB renders the add-on's
+    translation, "exact" when every node it reached translates exactly; POV-Ray exports node
+    materials as its default texture ("approximate")."""
+    node_recipes.build(material, recipe)
+    if engine == "POVRAY_RENDER":
+        return "approximate"
+    if engine == "CYCLES":
+        return "exact"
+    addon_api()
+    from bxdf_lab import nodes  # noqa: PLC0415 (only inside Blender with the add-on)
+    coverage = nodes.material_coverage(material)
+    return "exact" if all(entry["status"] == "exact" for entry in coverage) else "approximate"
 
 
 def summarize(material, engine) -> str:
@@ -100,6 +121,10 @@ def _read_back(material, engine) -> str:
         if pov.transparency_method == "RAYTRACE" and pov.use_transparency:
             text += f", refraction ior {material.pov_raytrace_transparency.ior:.4g}"
         return text
+    if engine == "BXDF_LAB" and getattr(material.bxdf_lab, "source", "") != "MODEL":
+        from bxdf_lab import nodes  # noqa: PLC0415 (only inside Blender with the add-on)
+        return "bxdf_lab: node translation (" + "; ".join(
+            f"{e['node']}: {e['status']}" for e in nodes.material_coverage(material)) + ")"
     return "bxdf_lab: the model itself"
 
 

@@ -5,6 +5,9 @@ which `approximate` (a best mapping: the diff is the finding). Facts from refere
 - Cycles' own Oren-Nayar (`cycles_oren_nayar`) and Glossy (`cycles_glossy`: GGX/Beckmann, separable
   Smith, F = 1) are exact between Cycles, BXDF_LAB and the analytic image (both from the core's f).
 - Every model is exact between BXDF_LAB and ANALYTIC (both evaluate the core's f).
+- A Blender node material (scene_spec.NODES) is exact between BXDF_LAB and Cycles: the add-on
+  translates the node tree Cycles renders (the driver records the translation's coverage as the
+  add-on's label, which the report checks against this).
 - Everything else is approximate; so is any POV-Ray global illumination (radiosity is not a path
   tracer) and any scene without analytic truth where a model is approximate in one engine."""
 from __future__ import annotations
@@ -12,13 +15,14 @@ from __future__ import annotations
 from itertools import combinations
 
 from . import ALL_ENGINES
-from .scene_spec import SceneSpec
+from .scene_spec import NODES, SceneSpec
 
 CORE = {"BXDF_LAB", "ANALYTIC"}
 EXACT_IN = {
     "lambertian": {"BXDF_LAB", "ANALYTIC", "CYCLES", "POVRAY_RENDER"},
     "cycles_oren_nayar": CORE | {"CYCLES"},
     "cycles_glossy": CORE | {"CYCLES"},
+    NODES: {"BXDF_LAB", "CYCLES"},
 }
 
 

@@ -12,6 +12,7 @@ import numpy as np
 
 from . import imageio, metrics, pairings, plots
 from .jobs import STOCHASTIC
+from .scene_spec import NODES
 
 ENGINE_ORDER = ("ANALYTIC", "CYCLES", "BXDF_LAB", "POVRAY_RENDER")
 POV_SATURATION = 65534.5 / 65535.0
@@ -166,6 +167,10 @@ def material_plots(run_dir, specs):
             if material.name in out:
                 continue
             entry = {"model": material.model, "params": material.params}
+            if material.model == NODES:
+                entry["plot_error"] = "a Blender node material: no single model to plot"
+                out[material.name] = entry
+                continue
             try:
                 lobe = os.path.join(plot_dir, f"{material.name}_lobe.png")
                 albedo = os.path.join(plot_dir, f"{material.name}_albedo.png")

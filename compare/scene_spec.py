@@ -9,10 +9,15 @@ import math
 from dataclasses import dataclass, field
 
 
+# The `model` of a material built only from Blender shader nodes; its params name the recipe
+# (compare/node_recipes.py): {"recipe": name}.
+NODES = "blender_nodes"
+
+
 @dataclass(frozen=True)
 class Material:
     name: str
-    model: str            # a bxdf model name (DESIGN.md)
+    model: str            # a bxdf model name (DESIGN.md), or NODES
     params: dict          # its parameters, as bxdf.make(model, **params) takes them
 
 
@@ -92,7 +97,7 @@ class SceneSpec:
     def has_analytic_truth(self) -> bool:
         """Spheres lit by point or sun lights, direct light only (or a furnace of one Lambertian
         sphere): the image is a closed-form function of the model's f."""
-        if not all(isinstance(o, Sphere) for o in self.objects):
+        if not all(isinstance(o, Sphere) and o.material.model != NODES for o in self.objects):
             return False
         if self.max_bounces == 0:
             return bool(self.lights)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 
+from .node_scenes import DEFAULT_NODE_SCENES, NODE_SCENES
 from .scene_spec import Box, Camera, Material, PointLight, Quad, SceneSpec, Sphere, SunLight
 
 
@@ -160,7 +161,8 @@ SCENES = {f().name: f for f in (
     lit_cycles_glossy_beckmann, sun_sphere, furnace, sweep_glossy_roughness,
     sweep_oren_nayar_sigma, cornell)}
 
-DEFAULT_SCENES = tuple(SCENES)
+DEFAULT_SCENES = tuple(SCENES) + tuple(f().name for f in DEFAULT_NODE_SCENES)
+SCENES.update({f().name: f for f in NODE_SCENES})
 
 
 def get(name: str) -> SceneSpec:

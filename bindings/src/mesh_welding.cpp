@@ -75,6 +75,11 @@ render::Mesh transformed(const render::Mesh& mesh, const std::array<double, 16>&
   out.material_indices = mesh.material_indices;
   out.uvs = mesh.uvs;
   out.indices = mesh.indices;
+  out.uv_maps = mesh.uv_maps;
+  out.tangents = mesh.tangents;
+  out.texture_space = mesh.texture_space;
+  out.object_to_world.resize(12);
+  for (int i = 0; i < 12; ++i) out.object_to_world[size_t(i)] = static_cast<float>(m[size_t(i)]);
 
   const size_t nv = mesh.num_vertices();
   out.positions.resize(3 * nv);
@@ -97,7 +102,24 @@ render::Mesh transformed(const render::Mesh& mesh, const std::array<double, 16>&
   if (det < 0.0) {
     // A mirror turns counter-clockwise into clockwise; swapping two corners restores the front.
     for (size_t t = 0; t < mesh.num_triangles(); ++t) std::swap(out.indices[3 * t + 1], out.indices[3 * t + 2]);
+    // Per-corner attributes follow their corners.
+    auto swap_corners = [&](std::vector<float>& a, size_t width) {
+      for (size_t t = 0; t < mesh.num_triangles(); ++t)
+        for (size_t c = 0; c < width; ++c) std::swap(a[(3 * t + 1) * width + c], a[(3 * t + 2) * width + c]);
+    };
+    for (auto& uv : out.uv_maps) swap_corners(uv, 2);
+    for (auto& t : out.tangents)
+      if (!t.empty()) swap_corners(t, 4);
   }
+  // Tangents are directions on the surface: moved by the linear part. A mirror flips the
+  // bitangent (cross(A n, A t) = −A (n × t) for an orthogonal A with det < 0).
+  for (auto& t : out.tangents)
+    for (size_t c = 0; c < t.size() / 4; ++c) {
+      const double x = t[4 * c], y = t[4 * c + 1], z = t[4 * c + 2];
+      for (int r = 0; r < 3; ++r)
+        t[4 * c + size_t(r)] = static_cast<float>(a(r, 0) * x + a(r, 1) * y + a(r, 2) * z);
+      if (det < 0.0) t[4 * c + 3] = -t[4 * c + 3];
+    }
   if (!mesh.normals.empty() && det != 0.0) {
     const double sign = det > 0.0 ? 1.0 : -1.0;
     out.normals.resize(3 * nv);

@@ -12,6 +12,7 @@
 #include "bxdf/params.h"
 #include "bxdf/render/filter.h"
 #include "bxdf/render/lights.h"
+#include "graph_from_python.h"
 #include "mesh_welding.h"
 #include "model.h"
 
@@ -204,9 +205,17 @@ auto with_path(const std::string& path, F&& build) {
   }
 }
 
-Material material_from_python(py::handle v, const std::string& path) {
+Material material_from_python(py::handle v, const std::string& path, render::TextureStore& textures) {
   const py::dict d = as_dict(v, path);
   Material material;
+  if (has(d, "graph")) {
+    for (auto item : d)
+      if (item.first.cast<std::string>() != "graph" && item.first.cast<std::string>() != "name")
+        refuse(key_path(path, item.first.cast<std::string>().c_str()),
+               "is not allowed next to 'graph' (a graph holds its closures and emission)");
+    material.graph = graph_from_python(d["graph"], path, textures);
+    return material;
+  }
   if (has(d, "model")) {
     const py::object model = d["model"];
     text(model, key_path(path, "model"), "a model name (see bxdf.models())");
@@ -310,6 +319,7 @@ struct MeshInput {
   IndexArray triangles, normal_indices, uv_indices;
   std::vector<uint32_t> materials;
   IndexedMeshArrays arrays;
+  MeshGraphAttributes graph_attributes;
 };
 
 MeshInput mesh_from_python(py::handle v, const std::string& path, size_t num_materials,
@@ -373,6 +383,7 @@ MeshInput mesh_from_python(py::handle v, const std::string& path, size_t num_mat
     in.arrays.uv_indices = in.uv_indices.data();
   }
   in.arrays.material_indices = in.materials.data();
+  in.graph_attributes = mesh_graph_attributes(d, path, static_cast<size_t>(nt));
   return in;
 }
 
@@ -436,12 +447,13 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
   // Materials: scene['materials'][i] is scene material i; -1 gets a default grey Lambertian
   // (Blender's look for an object without material), added on first use.
   size_t num_materials = 0;
+  render::TextureStore textures;  // images shared by the materials' graphs
   if (has(d, "materials")) {
     const std::string path = key_path(root, "materials");
     const py::list materials = as_list(d["materials"], path, "a list of material dicts");
     for (size_t i = 0; i < materials.size(); ++i) {
       const std::string p = item_path(path, i);
-      with_path(p, [&] { return scene.add_material(material_from_python(materials[i], p)); });
+      with_path(p, [&] { return scene.add_material(material_from_python(materials[i], p, textures)); });
     }
     num_materials = materials.size();
   }
@@ -518,7 +530,10 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
     py::gil_scoped_release release;
     std::vector<Mesh> welded(meshes.size());
     for (size_t i = 0; i < meshes.size(); ++i)
-      if (meshes[i].arrays.num_triangles > 0) welded[i] = weld_corners(meshes[i].arrays);
+      if (meshes[i].arrays.num_triangles > 0) {
+        welded[i] = weld_corners(meshes[i].arrays);
+        apply_graph_attributes(meshes[i].graph_attributes, welded[i]);
+      }
     auto add = [&](const Mesh& mesh, const std::string& what) {
       if (mesh.num_triangles() == 0) return;
       try {

@@ -8,7 +8,7 @@ Every value goes through `bxdf.make`, the registry's validation: a bad value rai
 naming the parameter, the value and the valid range, and leaves the material unchanged.
 """
 
-from . import dependency, properties
+from . import dependency, material_source, properties
 
 
 def _model(name):
@@ -20,14 +20,16 @@ def _model(name):
 
 
 def assign(material, model, **params):
-    """Sets `material` to `model` with `params` (missing ones take the registry's defaults).
-    Returns the bxdf model object. Raises ValueError on an unknown model or a bad value."""
+    """Sets `material` to `model` with `params` (missing ones take the registry's defaults), and
+    makes BXDF_LAB render the material from that model rather than its node tree. Returns the
+    bxdf model object. Raises ValueError on an unknown model or a bad value."""
     bxdf = dependency.require()
     made = bxdf.make(model, **params)  # validates; raises ValueError before anything changes
     info = _model(model)
     settings = material.bxdf_lab
     properties.write_values(properties.model_group(settings, model), info, dict(made.params))
     settings.model = model
+    material_source.set_source(material, "MODEL")
     return made
 
 

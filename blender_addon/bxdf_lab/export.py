@@ -15,7 +15,8 @@ so it can be tested, pickled, or handed to the renderer's binding unchanged.
                       UV map,
                   "material_indices": (T,) int32 into "materials", -1 = no material}],
       "instance_mesh": (I,) int32 into "meshes", "instance_matrix": (I, 4, 4) float32 object→world,
-      "materials": [{"name", "model", "params", "flags"}],  # bxdf.make(model, **params)
+      "materials": [{"name", "model", "params", "flags"}],  # bxdf.make(model, **params); a
+                  # material rendered from its node tree: {"name", "graph"} (node_materials.py)
       "lights": [{"type", "name", "matrix", "position", "direction", "color", "power", ...}],
       "camera": {...}, "world": {"color": (3,) float32}, "resolution": (width, height),
       "warnings": [str],  # things exported approximately (e.g. a textured world)
@@ -33,7 +34,7 @@ import math
 
 import numpy as np
 
-from . import api
+from . import api, material_source, node_materials
 
 GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
 
@@ -139,12 +140,19 @@ class _MaterialTable:
     def __init__(self):
         self.index = {}
         self.entries = []
+        self.nodes = node_materials.NodeMaterials()
 
     def get(self, material):
         if material is None:
             return -1
         material = material.original
-        if material.name not in self.index:
+        if material.name in self.index:
+            return self.index[material.name]
+        if material_source.source(material) == "NODES":
+            self.index[material.name] = len(self.entries)
+            self.entries.append(self.nodes.entry(material))
+        else:
+            self.nodes.count_for_cycles(material)
             model = api.make(material)  # ValueError naming the material on a bad value
             self.index[material.name] = len(self.entries)
             name, params = api.describe(material)
@@ -155,14 +163,16 @@ class _MaterialTable:
 
 def _object_mesh(obj, materials):
     """The mesh dict of an evaluated object, with material slots mapped to the scene table."""
+    slots = [materials.get(slot.material) for slot in obj.material_slots]
     mesh = obj.to_mesh()
     try:
         if mesh is None:
             return None
         data = mesh_arrays(mesh)
+        data.update(materials.nodes.mesh_attributes(
+            mesh, data, [slot.material and slot.material.original for slot in obj.material_slots]))
     finally:
         obj.to_mesh_clear()
-    slots = [materials.get(slot.material) for slot in obj.material_slots]
     if slots:
         table = np.asarray(slots, dtype=np.int32)
         data["material_indices"] = table[np.clip(data["material_indices"], 0, len(slots) - 1)]
@@ -289,7 +299,7 @@ def export_scene(depsgraph):
             instance_mesh.append(mesh_index[key])
             instance_matrix.append(_matrix(inst.matrix_world))
 
-    return {
+    data = {
         "meshes": meshes,
         "instance_mesh": np.asarray(instance_mesh, dtype=np.int32),
         "instance_matrix": (np.stack(instance_matrix) if instance_matrix
@@ -301,3 +311,5 @@ def export_scene(depsgraph):
         "resolution": resolution(scene),
         "warnings": warnings,
     }
+    materials.nodes.finish(data)
+    return data

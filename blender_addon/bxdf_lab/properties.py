@@ -14,7 +14,7 @@ import bpy
 from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty,
                        FloatVectorProperty, PointerProperty, StringProperty)
 
-from . import dependency, schema
+from . import dependency, material_source, schema
 
 FLT_MAX = 3.4028234e38
 # Attribute names a PropertyGroup already uses; a parameter with such a name gets a suffix.
@@ -201,6 +201,12 @@ def register():
     annotations["model"] = EnumProperty(name="Model", description="BxDF Lab reflection model",
                                         items=_model_items(), default=default_model,
                                         update=_on_model_change)
+    annotations["source"] = EnumProperty(
+        name="Render From", description="What BXDF_LAB renders for this material",
+        items=enum_items([i for i, _, _ in material_source.SOURCES],
+                         {i: label for i, label, _ in material_source.SOURCES},
+                         {i: doc for i, _, doc in material_source.SOURCES}),
+        default="NODES")
     # What "Set Up Cycles/POV-Ray Material" did last: exact or approximate, and how.
     for target in ("cycles", "pov"):
         annotations[f"{target}_label"] = StringProperty(name=f"{target} pairing label")

@@ -3,7 +3,7 @@ render settings. Stock panels that support BLENDER_RENDER also show for BXDF_LAB
 
 import bpy
 
-from . import api, fit_report, properties
+from . import api, fit_report, node_panel, properties
 from .engine import BXDFLAB_RenderEngine
 from .operators.presets import BXDFLAB_MT_presets
 
@@ -72,7 +72,9 @@ class BXDFLAB_PT_material(bpy.types.Panel):
     def draw(self, context):
         material = context.material
         settings = material.bxdf_lab
-        layout = self.layout
+        source = node_panel.draw_source(self.layout, material)
+        layout = self.layout.column()
+        layout.active = source == "MODEL"  # the model stays editable, greyed while unused
         layout.use_property_split = True
         row = layout.row(align=True)
         row.prop(settings, "model")

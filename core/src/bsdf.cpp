@@ -14,12 +14,18 @@ bool agrees_with_geometry(uint32_t flags, bool reflect) {
 
 }  // namespace
 
-void BSDF::add(const BxDF* component) {
+void BSDF::add(const BxDF* component, const RGB& weight, const Frame* frame) {
   if (!component) throw ParameterError("BSDF::add: component is null");
   if (count_ >= kMaxComponents)
     throw ParameterError("BSDF::add: at most " + std::to_string(kMaxComponents) +
                          " components, got one more");
-  components_[count_++] = component;
+  if (!finite_nonnegative(weight))
+    throw ParameterError("BSDF::add: weight must be in [0, inf) per channel");
+  components_[count_] = component;
+  weights_[count_] = weight;
+  sample_weights_[count_] = (weight.r + weight.g + weight.b) * (1.0f / 3.0f);
+  frames_[count_] = frame ? *frame : frame_;
+  ++count_;
 }
 
 int BSDF::num_components(uint32_t mask) const {
@@ -41,64 +47,87 @@ bool BSDF::has_transmission() const {
   return false;
 }
 
-RGB BSDF::f(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask) const {
-  const Vec3 wo = to_local(wo_world), wi = to_local(wi_world);
-  if (wo.z == 0.0f) return RGB(0.0f);
+template <class Term>
+RGB BSDF::weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask,
+                       Term term) const {
   const bool reflect = dot(wi_world, ng_) * dot(wo_world, ng_) > 0.0f;
   RGB sum(0.0f);
   for (int i = 0; i < count_; ++i) {
     const BxDF& b = *components_[i];
-    if (b.matches(mask) && agrees_with_geometry(b.flags(), reflect)) sum += b.f(wo, wi);
+    if (!b.matches(mask) || !agrees_with_geometry(b.flags(), reflect)) continue;
+    const Vec3 wo = frames_[i].to_local(wo_world);
+    if (wo.z == 0.0f) continue;
+    const Vec3 wi = frames_[i].to_local(wi_world);
+    sum += weights_[i] * term(b.f(wo, wi), wi);
   }
   return sum;
 }
 
+RGB BSDF::f(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask) const {
+  return weighted_sum(wo_world, wi_world, mask, [](const RGB& f, const Vec3&) { return f; });
+}
+
+RGB BSDF::f_cos(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask) const {
+  return weighted_sum(wo_world, wi_world, mask,
+                      [](const RGB& f, const Vec3& wi) { return f * abs_cos_theta(wi); });
+}
+
 float BSDF::pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask) const {
-  if (count_ == 0) return 0.0f;
-  const Vec3 wo = to_local(wo_world), wi = to_local(wi_world);
-  if (wo.z == 0.0f) return 0.0f;
-  float sum = 0.0f;
-  int matching = 0;
+  float sum = 0.0f, total_weight = 0.0f;
   for (int i = 0; i < count_; ++i) {
     const BxDF& b = *components_[i];
     if (!b.matches(mask)) continue;
-    ++matching;
-    sum += b.pdf(wo, wi);
+    total_weight += sample_weights_[i];
+    if (sample_weights_[i] == 0.0f) continue;
+    const Vec3 wo = frames_[i].to_local(wo_world);
+    if (wo.z == 0.0f) continue;
+    sum += sample_weights_[i] * b.pdf(wo, frames_[i].to_local(wi_world));
   }
-  return matching > 0 ? sum / static_cast<float>(matching) : 0.0f;
+  return total_weight > 0.0f ? sum / total_weight : 0.0f;
 }
 
 BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
   BSDFSample out;
-  const int matching = num_components(mask);
-  if (matching == 0) return out;
+  float total_weight = 0.0f;
+  int last = -1;
+  for (int i = 0; i < count_; ++i)
+    if (components_[i]->matches(mask) && sample_weights_[i] > 0.0f) {
+      total_weight += sample_weights_[i];
+      last = i;
+    }
+  if (last < 0) return out;
 
   // Choose the component with u.x, then stretch the part of u.x inside its slot back to [0, 1).
-  const float scaled = u.x * static_cast<float>(matching);
-  const int chosen = std::min(static_cast<int>(scaled), matching - 1);
-  const BxDF* picked = nullptr;
-  for (int i = 0, seen = 0; i < count_; ++i) {
-    if (!components_[i]->matches(mask)) continue;
-    if (seen++ == chosen) {
-      picked = components_[i];
+  const float target = u.x * total_weight;
+  int picked = last;
+  float start = 0.0f;
+  for (int i = 0; i < count_; ++i) {
+    if (!components_[i]->matches(mask) || !(sample_weights_[i] > 0.0f)) continue;
+    if (i == last || target < start + sample_weights_[i]) {
+      picked = i;
       break;
     }
+    start += sample_weights_[i];
   }
-  const Point2 u_remapped(std::min(scaled - static_cast<float>(chosen), 0x1.fffffep-1f), u.y);
+  const float chance = sample_weights_[picked] / total_weight;
+  const float remapped = (target - start) / sample_weights_[picked];
+  const Point2 u_remapped(clamp(remapped, 0.0f, 0x1.fffffep-1f), u.y);
 
-  const Vec3 wo = to_local(wo_world);
+  const BxDF& b = *components_[picked];
+  const Frame& frame = frames_[picked];
+  const Vec3 wo = frame.to_local(wo_world);
   if (wo.z == 0.0f) return out;
-  const BxDFSample s = picked->sample_f(wo, u_remapped);
+  const BxDFSample s = b.sample_f(wo, u_remapped);
   if (!s.valid()) return out;
 
-  out.wi = to_world(s.wi);
-  out.flags = s.flags != 0 ? s.flags : picked->flags();
-  out.f = s.f;
-  out.pdf = s.pdf;
+  out.wi = frame.to_world(s.wi);
+  out.flags = s.flags != 0 ? s.flags : b.flags();
 
-  if (picked->is_delta()) {
+  if (b.is_delta()) {
     // A delta lobe cannot be evaluated by the others; only the selection probability changes.
-    out.pdf /= static_cast<float>(matching);
+    out.f = weights_[picked] * s.f;
+    out.f_cos = out.f * abs_cos_theta(s.wi);
+    out.pdf = s.pdf * chance;
     // Geometry still decides: a sampled reflection that ends up below the geometric surface (or
     // a refraction that stays above it), possible with shading normals, is dropped.
     const bool reflect = dot(out.wi, ng_) * dot(wo_world, ng_) > 0.0f;
@@ -106,15 +135,10 @@ BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
     return out;
   }
 
-  if (matching > 1) {
-    for (int i = 0; i < count_; ++i) {
-      const BxDF& b = *components_[i];
-      if (&b != picked && b.matches(mask)) out.pdf += b.pdf(wo, s.wi);
-    }
-  }
-  out.pdf /= static_cast<float>(matching);
-  // Non-delta: f of the whole mixture, with the geometric-normal test, as f() does.
+  // Non-delta: f and pdf of the whole mixture, with the geometric-normal test, as f() does.
+  out.pdf = pdf(wo_world, out.wi, mask);
   out.f = f(wo_world, out.wi, mask);
+  out.f_cos = f_cos(wo_world, out.wi, mask);
   if (!(out.pdf > 0.0f)) return BSDFSample{};
   return out;
 }

@@ -13,6 +13,12 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
+// What a material graph needs per hit, reused along a path without touching the heap.
+struct ShadingScratch {
+  Vec3 registers[MaterialGraph::kMaxRegisters];
+  ClosureArena arena;
+};
+
 // Distance by which a new ray starts off the surface, relative to the coordinates' size: the
 // hit point comes from barycentrics, accurate to a few ulps, so ~250 ulps is safe.
 float offset_scale(const Vec3& p) {
@@ -54,7 +60,7 @@ RGB PathTracer::sample_one_light(const SurfacePoint& sp, const BSDF& bsdf, const
   const float u1 = rng.uniform(), u2 = rng.uniform();
   const LightSample ls = sample_light(light, sp.p, Point2(u1, u2));
   if (!(ls.pdf > 0.0f) || ls.radiance.is_black()) return RGB(0.0f);
-  const RGB f = bsdf.f(wo, ls.wi) * abs_dot(ls.wi, sp.ns);
+  const RGB f = bsdf.f_cos(wo, ls.wi);
   if (f.is_black()) return RGB(0.0f);
 
   const Vec3 origin = offset_origin(sp.p, sp.ng, ls.wi);
@@ -82,6 +88,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
   float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
   Vec3 prev_p;
   const auto& lights = scene_.lights();
+  ShadingScratch scratch;  // per call, on the stack: graph registers and per-hit closures
 
   for (int bounce = 0;; ++bounce) {
     Hit hit;
@@ -107,35 +114,48 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     const Vec3 wo = -ray.dir;
     const Material& mat = scene_.materials()[sp.material];
 
-    if (!mat.emission.is_black()) {
-      if (bounce == 0 || specular_bounce) {
-        L += beta * mat.emission;
-      } else {
-        const int li = scene_.area_light_of_mesh(hit.mesh);
-        const float lp =
-            li < 0 ? 0.0f
-                   : light_select_pdf_ * area_light_pdf(lights[size_t(li)], prev_p, sp.p, sp.ng);
-        L += beta * mat.emission * power_heuristic(1.0f, prev_pdf, 1.0f, lp);
-      }
-    }
-    if (bounce > settings_.max_bounces || mat.components.empty()) break;
-
     // Surfaces that only reflect are two-sided: face them towards the viewer. Transmissive
     // ones keep their orientation, which tells the model inside from outside.
     const bool transmissive = scene_.transmissive(sp.material);
-    if (dot(wo, sp.ng) < 0.0f && !transmissive) {
+    const bool flipped = dot(wo, sp.ng) < 0.0f && !transmissive;
+    if (flipped) {
       sp.ng = -sp.ng;
       sp.ns = -sp.ns;
     }
     BSDF bsdf(Frame::from_normal_tangent(sp.ns, sp.tangent), sp.ng);
-    for (const BxDFPtr& c : mat.components) bsdf.add(c.get());
+    RGB emitted = mat.emission;
+    if (mat.graph) {
+      // A node material: run its program at this point, then build its closures in place.
+      const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped};
+      mat.graph->evaluate(ctx, scratch.registers);
+      if (!mat.graph->emission_is_constant()) emitted = mat.graph->emitted(scratch.registers);
+      scratch.arena.reset();
+      mat.graph->add_closures(scratch.registers, sp.tangent, scratch.arena, bsdf);
+    } else {
+      for (const BxDFPtr& c : mat.components) bsdf.add(c.get());
+    }
+
+    if (!emitted.is_black()) {
+      if (bounce == 0 || specular_bounce) {
+        L += beta * emitted;
+      } else {
+        // Textured emission is found by BSDF sampling alone (it is not an area light).
+        const bool textured = mat.graph && !mat.graph->emission_is_constant();
+        const int li = textured ? -1 : scene_.area_light_of_mesh(hit.mesh);
+        const float lp =
+            li < 0 ? 0.0f
+                   : light_select_pdf_ * area_light_pdf(lights[size_t(li)], prev_p, sp.p, sp.ng);
+        L += beta * emitted * power_heuristic(1.0f, prev_pdf, 1.0f, lp);
+      }
+    }
+    if (bounce > settings_.max_bounces || bsdf.num_components() == 0) break;
 
     if (bsdf.has_non_delta()) L += beta * sample_one_light(sp, bsdf, wo, rng, stats);
 
     const float u1 = rng.uniform(), u2 = rng.uniform();
     const BSDFSample bs = bsdf.sample_f(wo, Point2(u1, u2));
     if (!bs.valid() || bs.f.is_black()) break;
-    beta *= bs.f * (abs_dot(bs.wi, sp.ns) / bs.pdf);
+    beta *= bs.f_cos / bs.pdf;
     if (beta.is_black()) break;
     if (transmissive && (bs.flags & kTransmission)) {
       // Entering (wo on the front side) scales radiance by (η_i/η_t)²; leaving undoes it.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -22,6 +23,8 @@ struct Scene::EmbreeState {
 
 namespace {
 
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
 std::string embree_error(RTCDevice device) {
   switch (rtcGetDeviceError(device)) {
     case RTC_ERROR_NONE: return "no error";
@@ -38,7 +41,91 @@ Vec3 load3(const std::vector<float>& a, uint32_t i) {
   return {a[3 * size_t(i)], a[3 * size_t(i) + 1], a[3 * size_t(i) + 2]};
 }
 
+void require_finite(const float* p, size_t n, size_t width, const std::string& what) {
+  for (size_t i = 0; i < n * width; ++i)
+    if (!std::isfinite(p[i]))
+      throw ParameterError(what + "[" + std::to_string(i / width) + "] is not finite");
+}
+
+// Inverse of an affine 3×4 matrix; false when it is singular.
+bool invert_affine(const float* m, std::array<float, 12>* out) {
+  const double a = m[0], b = m[1], c = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9],
+               k = m[10];
+  const double det = a * (e * k - f * h) - b * (d * k - f * g) + c * (d * h - e * g);
+  if (!(std::fabs(det) > 1e-30)) return false;
+  const double inv[9] = {(e * k - f * h) / det, (c * h - b * k) / det, (b * f - c * e) / det,
+                         (f * g - d * k) / det, (a * k - c * g) / det, (c * d - a * f) / det,
+                         (d * h - e * g) / det, (b * g - a * h) / det, (a * e - b * d) / det};
+  for (int r = 0; r < 3; ++r) {
+    for (int col = 0; col < 3; ++col) (*out)[size_t(4 * r + col)] = float(inv[3 * r + col]);
+    (*out)[size_t(4 * r + 3)] =
+        float(-(inv[3 * r] * m[3] + inv[3 * r + 1] * m[7] + inv[3 * r + 2] * m[11]));
+  }
+  return true;
+}
+
+Vec3 apply_affine(const std::array<float, 12>& m, const Vec3& p) {
+  return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+          m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
+}
+
+// η_t/η_i of a graph's first transmissive closure with constant eta_i/eta_t (1 otherwise).
+float graph_eta(const MaterialGraph& graph) {
+  for (const GraphClosure& c : graph.closures) {
+    const BxDF* m = c.prebuilt.get();
+    if (!m || !(m->flags() & kTransmission)) continue;
+    const ParamSet& p = m->params();
+    if (p.has("eta_i") && p.has("eta_t") && p.number("eta_i") > 0.0)
+      return static_cast<float>(p.number("eta_t") / p.number("eta_i"));
+  }
+  return 1.0f;
+}
+
 }  // namespace
+
+// UV maps, tangents, the object transform and the texture space a material graph reads.
+void Scene::add_graph_attributes(const MeshView& m, const std::string& who, StoredMesh& s) {
+  const size_t corners = 3 * m.num_triangles;
+  for (size_t k = 0; k < m.num_uv_maps; ++k) {
+    const std::string name = who + ": uv_maps[" + std::to_string(k) + "]";
+    if (!m.uv_maps || !m.uv_maps[k]) throw ParameterError(name + " is missing");
+    require_finite(m.uv_maps[k], corners, 2, name);
+    s.uv_maps.emplace_back(m.uv_maps[k], m.uv_maps[k] + 2 * corners);
+    std::vector<float> tangents;
+    if (m.tangents && m.tangents[k]) {
+      require_finite(m.tangents[k], corners, 4, who + ": tangents[" + std::to_string(k) + "]");
+      tangents.assign(m.tangents[k], m.tangents[k] + 4 * corners);
+    }
+    s.tangents.push_back(std::move(tangents));
+  }
+  if (m.object_to_world) {
+    require_finite(m.object_to_world, 1, 12, who + ": object_to_world");
+    if (!invert_affine(m.object_to_world, &s.world_to_object))
+      throw ParameterError(who + ": object_to_world is singular (no object coordinates)");
+  }
+  Vec3 location, size;
+  if (m.texture_space) {
+    require_finite(m.texture_space, 1, 6, who + ": texture_space");
+    location = Vec3(m.texture_space[0], m.texture_space[1], m.texture_space[2]);
+    size = Vec3(m.texture_space[3], m.texture_space[4], m.texture_space[5]);
+  } else {
+    // Blender's automatic texture space: the object-space bounding box, a zero extent as 1.
+    Vec3 lo(kInf, kInf, kInf), hi(-kInf, -kInf, -kInf);
+    for (size_t i = 0; i < m.num_vertices; ++i) {
+      const Vec3 p = apply_affine(s.world_to_object, load3(s.positions, uint32_t(i)));
+      lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+      hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+    }
+    location = (lo + hi) * 0.5f;
+    size = (hi - lo) * 0.5f;
+    for (float* c : {&size.x, &size.y, &size.z})
+      if (*c == 0.0f) *c = 1.0f;
+  }
+  s.texspace_location = location;
+  s.texspace_inv_size = Vec3(size.x != 0.0f ? 1.0f / size.x : 0.0f,
+                             size.y != 0.0f ? 1.0f / size.y : 0.0f,
+                             size.z != 0.0f ? 1.0f / size.z : 0.0f);
+}
 
 Scene::Scene() : embree_(std::make_unique<EmbreeState>()) {}
 Scene::~Scene() = default;
@@ -52,7 +139,15 @@ uint32_t Scene::add_material(Material material) {
     if (!c) throw ParameterError("material has a null component");
   if (!finite_nonnegative(material.emission))
     throw ParameterError("material emission must be in [0, inf) per channel");
+  if (material.graph) {
+    if (!material.components.empty())
+      throw ParameterError("a material has either components or a graph, not both");
+    material.emission = material.graph->emission_is_constant()
+                            ? material.graph->emitted(nullptr)
+                            : RGB(0.0f);
+  }
   float eta = 0.0f;
+  if (material.graph && (material.graph->flags() & kTransmission)) eta = graph_eta(*material.graph);
   for (const BxDFPtr& c : material.components) {
     if (!(c->flags() & kTransmission)) continue;
     const ParamSet& p = c->params();
@@ -95,6 +190,7 @@ uint32_t Scene::add_mesh(const MeshView& m) {
       if (!std::isfinite(s.uvs[i]))
         throw ParameterError(who + ": uvs[" + std::to_string(i / 2) + "] is not finite");
   }
+  add_graph_attributes(m, who, s);
   s.indices.assign(m.indices, m.indices + 3 * m.num_triangles);
   for (size_t i = 0; i < s.indices.size(); ++i)
     if (s.indices[i] >= m.num_vertices)
@@ -283,6 +379,58 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
   if (!have_tangent) sp.tangent = Vec3(-sp.p.y, sp.p.x, 0.0f);  // radial about Z, as Cycles
   sp.material = m.material_indices.empty() ? m.material : m.material_indices[hit.triangle];
   return sp;
+}
+
+Vec3 Scene::uv(const Hit& hit, int map) const {
+  const StoredMesh& m = meshes_[hit.mesh];
+  const float b0 = 1.0f - hit.b1 - hit.b2;
+  if (map >= 0 && size_t(map) < m.uv_maps.size()) {
+    const float* c = m.uv_maps[size_t(map)].data() + 6 * size_t(hit.triangle);
+    return {c[0] * b0 + c[2] * hit.b1 + c[4] * hit.b2, c[1] * b0 + c[3] * hit.b1 + c[5] * hit.b2,
+            0.0f};
+  }
+  if (map == 0 && m.uv_maps.empty() && !m.uvs.empty()) {
+    const uint32_t* t = &m.indices[3 * size_t(hit.triangle)];
+    const float* uv = m.uvs.data();
+    return {uv[2 * t[0]] * b0 + uv[2 * t[1]] * hit.b1 + uv[2 * t[2]] * hit.b2,
+            uv[2 * t[0] + 1] * b0 + uv[2 * t[1] + 1] * hit.b1 + uv[2 * t[2] + 1] * hit.b2, 0.0f};
+  }
+  return {0.0f, 0.0f, 0.0f};
+}
+
+bool Scene::tangent(const Hit& hit, int map, Vec3* tangent, float* sign) const {
+  const StoredMesh& m = meshes_[hit.mesh];
+  if (map < 0 || size_t(map) >= m.tangents.size() || m.tangents[size_t(map)].empty()) return false;
+  const float* c = m.tangents[size_t(map)].data() + 12 * size_t(hit.triangle);
+  const float b0 = 1.0f - hit.b1 - hit.b2;
+  *tangent = Vec3(c[0], c[1], c[2]) * b0 + Vec3(c[4], c[5], c[6]) * hit.b1 +
+             Vec3(c[8], c[9], c[10]) * hit.b2;
+  *sign = c[3] * b0 + c[7] * hit.b1 + c[11] * hit.b2;
+  return true;
+}
+
+Vec3 Scene::smooth_normal(const Hit& hit) const {
+  const StoredMesh& m = meshes_[hit.mesh];
+  const uint32_t* t = &m.indices[3 * size_t(hit.triangle)];
+  if (m.normals.empty()) {
+    Vec3 n = cross(load3(m.positions, t[1]) - load3(m.positions, t[0]),
+                   load3(m.positions, t[2]) - load3(m.positions, t[0]));
+    return normalize_direction(n) ? n : Vec3(0, 0, 1);
+  }
+  const float b0 = 1.0f - hit.b1 - hit.b2;
+  return load3(m.normals, t[0]) * b0 + load3(m.normals, t[1]) * hit.b1 +
+         load3(m.normals, t[2]) * hit.b2;
+}
+
+Vec3 Scene::object_position(const Hit& hit, const Vec3& p) const {
+  return apply_affine(meshes_[hit.mesh].world_to_object, p);
+}
+
+Vec3 Scene::generated(const Hit& hit, const Vec3& p) const {
+  const StoredMesh& m = meshes_[hit.mesh];
+  const Vec3 d = object_position(hit, p) - m.texspace_location;
+  return {d.x * m.texspace_inv_size.x * 0.5f + 0.5f, d.y * m.texspace_inv_size.y * 0.5f + 0.5f,
+          d.z * m.texspace_inv_size.z * 0.5f + 0.5f};
 }
 
 void* Scene::embree_scene() const { return embree_->scene; }

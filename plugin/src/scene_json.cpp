@@ -11,6 +11,7 @@
 
 #include "bxdf/io/material_json.h"
 #include "bxdf/render/lights.h"
+#include "bxdf/render/material_graph_json.h"
 #include "bxdf/render/shapes.h"
 
 namespace bxdf::render {
@@ -228,8 +229,80 @@ void read_camera(const Reader& r, const json& j, CameraSettings& c) {
   }
 }
 
-uint32_t read_material(const Reader& r, const json& j, const std::string& path, Scene& scene) {
+// {"name": ..., "graph": {...}}: a material graph (docs/material-graph.md).
+uint32_t read_graph_material(const Reader& r, const json& j, const std::string& path, Scene& scene,
+                             TextureStore& textures) {
+  r.only_keys(j, path, {"graph", "name"});
+  Material m;
+  try {
+    m.graph = read_material_graph(j["graph"], "graph", r.base_, textures);
+  } catch (const GraphFieldError& e) {
+    r.fail_message(path + "." + e.field, e.problem);
+  }
+  return scene.add_material(std::move(m));
+}
+
+// Per-corner UV maps and tangents, the object transform and the texture space of an inline
+// mesh, for material graphs.
+void read_graph_attributes(const Reader& r, const json& j, const std::string& path, Mesh& mesh) {
+  const size_t corners = 3 * mesh.num_triangles();
+  auto per_corner = [&](const char* key, size_t width) {
+    std::vector<std::vector<float>> out;
+    if (!j.contains(key)) return out;
+    const json& maps = j[key];
+    if (!maps.is_array()) r.fail(path + "." + key, "an array (one entry per UV map)", maps);
+    for (size_t k = 0; k < maps.size(); ++k) {
+      const std::string p = path + "." + key + "[" + std::to_string(k) + "]";
+      if (maps[k].is_null()) {
+        out.emplace_back();
+        continue;
+      }
+      if (!maps[k].is_array() || maps[k].size() != corners)
+        r.fail(p, std::to_string(corners) + " entries (one per triangle corner)", maps[k]);
+      std::vector<float> flat;
+      for (size_t c = 0; c < corners; ++c) {
+        const json& e = maps[k][c];
+        const std::string pc = p + "[" + std::to_string(c) + "]";
+        if (!e.is_array() || e.size() != width) r.fail(pc, std::to_string(width) + " numbers", e);
+        for (size_t i = 0; i < width; ++i)
+          flat.push_back(static_cast<float>(r.number(e[i], pc + "[" + std::to_string(i) + "]")));
+      }
+      out.push_back(std::move(flat));
+    }
+    return out;
+  };
+  mesh.uv_maps = per_corner("uv_maps", 2);
+  for (size_t k = 0; k < mesh.uv_maps.size(); ++k)
+    if (mesh.uv_maps[k].empty()) r.fail_message(path + ".uv_maps[" + std::to_string(k) + "]", "is null");
+  mesh.tangents = per_corner("tangents", 4);
+  if (mesh.tangents.size() > mesh.uv_maps.size())
+    r.fail(path + ".tangents", "at most one entry per UV map (" + std::to_string(mesh.uv_maps.size()) + ")",
+           j["tangents"]);
+  mesh.tangents.resize(mesh.uv_maps.size());
+  auto fixed = [&](const char* key, size_t n, std::vector<float>* out) {
+    if (!j.contains(key)) return;
+    const json& a = j[key];
+    std::vector<float> flat;
+    const json* items = &a;
+    json rows = json::array();
+    if (a.is_array() && !a.empty() && a[0].is_array())  // rows of a matrix
+      for (const json& row : a)
+        for (const json& v : row) rows.push_back(v);
+    if (!rows.empty()) items = &rows;
+    if (!items->is_array() || items->size() != n)
+      r.fail(path + "." + key, std::to_string(n) + " numbers", a);
+    for (size_t i = 0; i < n; ++i)
+      flat.push_back(static_cast<float>(r.number((*items)[i], path + "." + key + "[" + std::to_string(i) + "]")));
+    *out = std::move(flat);
+  };
+  fixed("object_to_world", 12, &mesh.object_to_world);
+  fixed("texture_space", 6, &mesh.texture_space);
+}
+
+uint32_t read_material(const Reader& r, const json& j, const std::string& path, Scene& scene,
+                       TextureStore& textures) {
   r.object(j, path);
+  if (j.contains("graph")) return read_graph_material(r, j, path, scene, textures);
   Material m;
   const std::string where = r.file_ + ": " + path;
   // Either one model (the shared material format) or "components": several combined.
@@ -376,7 +449,7 @@ void read_mesh(const Reader& r, const json& j, const std::string& path,
     }
   } else if (j.contains("positions")) {
     r.only_keys(j, path, {"positions", "indices", "normals", "uvs", "material", "material_indices",
-                          "materials"});
+                          "materials", "uv_maps", "tangents", "object_to_world", "texture_space"});
     mesh.positions = r.floats(j["positions"], path + ".positions", 3);
     if (mesh.positions.empty()) r.fail(path + ".positions", "a non-empty array of [x, y, z]", j["positions"]);
     const size_t nv = mesh.num_vertices();
@@ -391,6 +464,7 @@ void read_mesh(const Reader& r, const json& j, const std::string& path,
       if (mesh.uvs.size() != 2 * nv)
         r.fail(path + ".uvs", std::to_string(nv) + " UVs (one per position)", j["uvs"]);
     }
+    read_graph_attributes(r, j, path, mesh);
     if (j.contains("material_indices")) {
       // Per-triangle indices into this mesh's "materials" list of names.
       const json& names = r.require(j, path, "materials");
@@ -513,12 +587,13 @@ LoadedScene parse_scene_json(const std::string& text, const std::string& name,
   }
 
   std::map<std::string, uint32_t> materials;
+  TextureStore textures;  // images shared by the materials' graphs
   const json& mats = r.require(root, "", "materials");
   if (!mats.is_object() || mats.empty())
     r.fail("materials", "an object of named materials {\"name\": {\"model\": ..., \"params\": ...}}", mats);
   for (auto it = mats.begin(); it != mats.end(); ++it) {
     try {
-      materials[it.key()] = read_material(r, it.value(), "materials." + it.key(), scene);
+      materials[it.key()] = read_material(r, it.value(), "materials." + it.key(), scene, textures);
     } catch (const SceneFileError&) {
       throw;
     } catch (const ParameterError& e) {

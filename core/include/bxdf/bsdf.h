@@ -1,7 +1,9 @@
-// The BSDF at one surface point (seed ch. 10, pbrt-v3's BSDF): several BxDFs in a shading
-// frame. It moves directions between world space and the local frame, uses the geometric
-// normal to decide whether a pair of directions is a reflection or a transmission (so that
-// shading normals cannot leak light through a surface), and picks one component to sample.
+// The BSDF at one surface point (seed ch. 10, pbrt-v3's BSDF): a weighted sum of BxDFs, each
+// in a shading frame (the point's, or its own when a material perturbs that closure's normal).
+// It moves directions between world space and the local frames, uses the geometric normal to
+// decide whether a pair of directions is a reflection or a transmission (so that shading
+// normals cannot leak light through a surface), and picks one component to sample in
+// proportion to its sample weight, the average of its RGB weight (Cycles' sample_weight).
 //
 // A BSDF is built per hit, on the stack: it holds non-owning pointers to BxDFs that the scene
 // owns (as shared BxDFPtrs) and never allocates.
@@ -17,6 +19,7 @@ namespace bxdf {
 // What BSDF::sample_f returns; directions in world space.
 struct BSDFSample {
   RGB f;
+  RGB f_cos;  // f times |cos θi| about each component's own normal (the estimator's factor)
   Vec3 wi;
   float pdf = 0.0f;
   uint32_t flags = 0;  // the sampled lobe's flags (kSpecular set for a delta lobe)
@@ -34,8 +37,9 @@ class BSDF {
   BSDF(const Frame& shading, const Vec3& geometric_normal)
       : frame_(shading), ng_(geometric_normal) {}
 
-  // Adds a component; throws ParameterError past kMaxComponents or for a null pointer.
-  void add(const BxDF* component);
+  // Adds weight · component, in `frame` (world space; null: the BSDF's shading frame). Throws
+  // ParameterError past kMaxComponents, for a null pointer or a negative/non-finite weight.
+  void add(const BxDF* component, const RGB& weight = RGB(1.0f), const Frame* frame = nullptr);
 
   int num_components() const { return count_; }
   // Components whose every flag is in `mask` (BxDF::matches).
@@ -45,27 +49,38 @@ class BSDF {
   // True when some component transmits.
   bool has_transmission() const;
   const BxDF* component(int i) const { return components_[i]; }
+  const RGB& weight(int i) const { return weights_[i]; }
 
   const Frame& frame() const { return frame_; }
   const Vec3& geometric_normal() const { return ng_; }
   Vec3 to_local(const Vec3& v) const { return frame_.to_local(v); }
   Vec3 to_world(const Vec3& v) const { return frame_.to_world(v); }
 
-  // Sum of f over matching components that agree with the geometry: reflection components
-  // when wo and wi are on the same side of the geometric normal, transmission ones otherwise.
+  // Weighted sum of f over matching components that agree with the geometry: reflection
+  // components when wo and wi are on the same side of the geometric normal, transmission ones
+  // otherwise.
   RGB f(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask = kAll) const;
-  // Average pdf over the matching components (the density of sample_f's mixture).
+  // The same sum with each term times |cos θi| about its component's normal.
+  RGB f_cos(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask = kAll) const;
+  // Pdf of sample_f's mixture: the matching components' pdfs weighted by their sample weights
+  // (with unit weights, the average).
   float pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask = kAll) const;
-  // Picks a matching component uniformly with u.x, remaps u.x to [0, 1) and samples it. For a
-  // non-delta lobe f and pdf are then those of the whole mixture (summed f, averaged pdf), so
-  // that the returned f/pdf is the estimator's weight; a delta lobe's pdf is divided by the
-  // component count (the chance of picking it).
+  // Picks a matching component with u.x in proportion to its sample weight, remaps u.x to
+  // [0, 1) and samples it. For a non-delta lobe f, f_cos and pdf are then those of the whole
+  // mixture, so that f_cos/pdf is the estimator's weight; a delta lobe's f is its own times its
+  // weight and its pdf is times the chance of picking it.
   BSDFSample sample_f(const Vec3& wo_world, Point2 u, uint32_t mask = kAll) const;
 
  private:
   Frame frame_;
   Vec3 ng_{0, 0, 1};
+  template <class Term>
+  RGB weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, Term term) const;
+
   const BxDF* components_[kMaxComponents] = {};
+  RGB weights_[kMaxComponents];
+  float sample_weights_[kMaxComponents] = {};
+  Frame frames_[kMaxComponents];
   int count_ = 0;
 };
 

@@ -1,5 +1,7 @@
 #include "bxdf/models/cycles_glossy.h"
 
+#include <algorithm>
+
 #include "bxdf/microfacet/beckmann.h"
 #include "bxdf/microfacet/ggx.h"
 #include "bxdf/model_support.h"
@@ -26,6 +28,22 @@ void cycles_alphas(float roughness, float anisotropy, float* alpha_x, float* alp
   *alpha_y = clamp(*alpha_y, 0.0f, 1.0f);
 }
 
+// create and place share this builder: `emit` makes the model in the caller's storage.
+template <class Emit>
+auto build_cycles_glossy(const RGB& color, bool beckmann, float roughness, float anisotropy,
+                         Emit&& emit) {
+  float ax = 0.0f, ay = 0.0f;
+  cycles_alphas(roughness, anisotropy, &ax, &ay);
+  const bool mirror = ax * ay <= kCyclesSingularAlpha2;
+  // Above the singular threshold a single α can still be below microfacet::kMinAlpha
+  // (strong anisotropy at low roughness); the distribution raises it to 1e-4, which only
+  // changes lobes narrower than float directions can resolve.
+  if (beckmann)
+    return emit(Type<CyclesGlossy<microfacet::Beckmann>>{}, color, microfacet::Beckmann(ax, ay),
+                mirror);
+  return emit(Type<CyclesGlossy<microfacet::GGX>>{}, color, microfacet::GGX(ax, ay), mirror);
+}
+
 }  // namespace
 
 ModelInfo cycles_glossy_model() {
@@ -42,19 +60,27 @@ ModelInfo cycles_glossy_model() {
                   "Cycles anisotropy, clamped to [-0.99, 0.99]; > 0 stretches along the bitangent"),
   };
   m.create = [](const ParamSet& p) -> std::unique_ptr<BxDF> {
-    float ax = 0.0f, ay = 0.0f;
-    cycles_alphas(static_cast<float>(p.number("roughness")),
-                  static_cast<float>(p.number("anisotropy")), &ax, &ay);
-    const bool mirror = ax * ay <= kCyclesSingularAlpha2;
-    const RGB color = to_rgb(p.rgb("color"));
-    // Above the singular threshold a single α can still be below microfacet::kMinAlpha
-    // (strong anisotropy at low roughness); the distribution raises it to 1e-4, which only
-    // changes lobes narrower than float directions can resolve.
-    if (p.string("distribution") == "beckmann")
-      return std::make_unique<CyclesGlossy<microfacet::Beckmann>>(
-          color, microfacet::Beckmann(ax, ay), mirror);
-    return std::make_unique<CyclesGlossy<microfacet::GGX>>(color, microfacet::GGX(ax, ay), mirror);
+    return build_cycles_glossy(to_rgb(p.rgb("color")), p.string("distribution") == "beckmann",
+                               static_cast<float>(p.number("roughness")),
+                               static_cast<float>(p.number("anisotropy")),
+                               [](auto type, const auto&... args) -> std::unique_ptr<BxDF> {
+                                 return make_from(type, args...);
+                               });
   };
+  const size_t color = param_index(m.params, "color"),
+               distribution = param_index(m.params, "distribution"),
+               roughness = param_index(m.params, "roughness"),
+               anisotropy = param_index(m.params, "anisotropy");
+  const float beckmann_choice = 1.0f;  // index of "beckmann" in the choices above
+  m.place = [=](const PlainValue* v, ClosureArena& arena) -> const BxDF* {
+    return build_cycles_glossy(plain_rgb(v[color]), v[distribution].x == beckmann_choice,
+                               v[roughness].x, v[anisotropy].x,
+                               [&](auto type, const auto&... args) -> const BxDF* {
+                                 return place_from(arena, type, args...);
+                               });
+  };
+  m.place_size = std::max(sizeof(CyclesGlossy<microfacet::GGX>),
+                          sizeof(CyclesGlossy<microfacet::Beckmann>));
   return m;
 }
 

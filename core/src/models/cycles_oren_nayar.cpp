@@ -18,6 +18,12 @@ ModelInfo cycles_oren_nayar_model() {
     return std::make_unique<CyclesOrenNayar>(to_rgb(p.rgb("color")),
                                              static_cast<float>(p.number("roughness")));
   };
+  const size_t color = param_index(m.params, "color"),
+               roughness = param_index(m.params, "roughness");
+  m.place = [=](const PlainValue* v, ClosureArena& arena) -> const BxDF* {
+    return arena.make<CyclesOrenNayar>(plain_rgb(v[color]), v[roughness].x);
+  };
+  m.place_size = sizeof(CyclesOrenNayar);
   return m;
 }
 

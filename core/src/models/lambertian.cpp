@@ -13,6 +13,11 @@ ModelInfo lambertian_model() {
   m.create = [](const ParamSet& p) {
     return std::make_unique<Lambertian>(to_rgb(p.rgb("reflectance")));
   };
+  const size_t reflectance = param_index(m.params, "reflectance");
+  m.place = [=](const PlainValue* v, ClosureArena& arena) -> const BxDF* {
+    return arena.make<Lambertian>(plain_rgb(v[reflectance]));
+  };
+  m.place_size = sizeof(Lambertian);
   return m;
 }
 

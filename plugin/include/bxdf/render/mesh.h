@@ -19,6 +19,20 @@ struct MeshView {
   size_t num_triangles = 0;
   const uint32_t* material_indices = nullptr;  // (num_triangles,) or null: all use `material`
   uint32_t material = 0;
+
+  // Attributes material graphs read (all optional). UV maps per triangle corner, each
+  // (num_triangles * 3, 2); map 0 is the active render map (without uv_maps, `uvs` is map 0).
+  const float* const* uv_maps = nullptr;
+  size_t num_uv_maps = 0;
+  // Per UV map (num_uv_maps entries, each may be null): per-corner tangents (x, y, z, sign),
+  // (num_triangles * 3, 4), world space (Blender's MikkTSpace calc_tangents, transformed).
+  const float* const* tangents = nullptr;
+  // Object → world, 3×4 row-major; null: identity. Object coordinates are world positions
+  // taken back through it.
+  const float* object_to_world = nullptr;
+  // Texture space (location, size: 6 floats, object space) for Generated coordinates; null:
+  // the object-space bounding box (Blender's automatic texture space).
+  const float* texture_space = nullptr;
 };
 
 // An owning mesh, for meshes the renderer builds or loads itself.
@@ -26,6 +40,8 @@ struct Mesh {
   std::vector<float> positions, normals, uvs;
   std::vector<uint32_t> indices, material_indices;
   uint32_t material = 0;
+  std::vector<std::vector<float>> uv_maps, tangents;  // as in MeshView (a tangent entry may be empty)
+  std::vector<float> object_to_world, texture_space;  // empty: as null in MeshView
 
   size_t num_vertices() const { return positions.size() / 3; }
   size_t num_triangles() const { return indices.size() / 3; }
@@ -39,8 +55,20 @@ struct Mesh {
     v.num_triangles = num_triangles();
     v.material_indices = material_indices.empty() ? nullptr : material_indices.data();
     v.material = material;
+    uv_map_pointers_.clear();
+    tangent_pointers_.clear();
+    for (const auto& m : uv_maps) uv_map_pointers_.push_back(m.data());
+    for (const auto& t : tangents) tangent_pointers_.push_back(t.empty() ? nullptr : t.data());
+    v.uv_maps = uv_map_pointers_.empty() ? nullptr : uv_map_pointers_.data();
+    v.num_uv_maps = uv_maps.size();
+    v.tangents = tangent_pointers_.empty() ? nullptr : tangent_pointers_.data();
+    v.object_to_world = object_to_world.empty() ? nullptr : object_to_world.data();
+    v.texture_space = texture_space.empty() ? nullptr : texture_space.data();
     return v;
   }
+
+ private:
+  mutable std::vector<const float*> uv_map_pointers_, tangent_pointers_;
 };
 
 }  // namespace bxdf::render

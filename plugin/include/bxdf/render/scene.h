@@ -3,8 +3,10 @@
 // it is immutable and safe to query from many threads.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "bxdf/bsdf.h"
@@ -62,6 +64,16 @@ class Scene {
   // True when something blocks the segment origin + t·dir, t in (0, tmax).
   bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;
   SurfacePoint surface_point(const Hit& hit) const;
+
+  // Mesh attributes at a hit, for material graphs (hit barycentrics may lie outside the
+  // triangle: attributes extrapolate linearly, as ray differentials need).
+  Vec3 uv(const Hit& hit, int map) const;  // (u, v, 0); zero where the mesh has no such map
+  // The UV map's tangent (interpolated, unnormalised) and sign; false when the mesh has none.
+  bool tangent(const Hit& hit, int map, Vec3* tangent, float* sign) const;
+  // Interpolated vertex normal, unnormalised (the geometric normal on a flat mesh).
+  Vec3 smooth_normal(const Hit& hit) const;
+  Vec3 object_position(const Hit& hit, const Vec3& p) const;
+  Vec3 generated(const Hit& hit, const Vec3& p) const;  // object position in the texture space
   // Emitted radiance of the material at a hit (both sides).
   const RGB& emission(uint32_t material) const { return materials_[material].emission; }
   // η_t/η_i of the material's first transmissive component (1 when none), read from the
@@ -80,8 +92,12 @@ class Scene {
     std::vector<float> positions, normals, uvs;
     std::vector<uint32_t> indices, material_indices;
     uint32_t material = 0;
+    std::vector<std::vector<float>> uv_maps, tangents;  // per corner
+    std::array<float, 12> world_to_object{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    Vec3 texspace_location, texspace_inv_size{1, 1, 1};  // generated = (p − loc)·inv/2 + ½
   };
   struct EmbreeState;
+  static void add_graph_attributes(const MeshView& mesh, const std::string& who, StoredMesh& s);
 
   std::vector<Material> materials_;
   std::vector<float> material_eta_;  // 0 = no transmission; else η_t/η_i (1 if unknown)

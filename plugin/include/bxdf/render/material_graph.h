@@ -1,0 +1,105 @@
+// A material graph (docs/material-graph.md) compiled for the renderer: a flat program of value
+// nodes evaluated per hit into fixed registers, a weighted list of closures (registry models
+// whose parameters are constants or registers) with an optional per-closure normal, and an
+// emission value. Constants are validated once when the graph is built; at a hit nothing is
+// validated or allocated: the program runs, referenced parameters are clamped into the
+// registry's ranges, and each closure is placed into the caller's ClosureArena.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "bxdf/bsdf.h"
+#include "bxdf/registry.h"
+#include "bxdf/render/texture.h"
+
+namespace bxdf::render {
+
+class Scene;
+struct Hit;
+
+enum class GraphOp : uint8_t {
+  Const, UV, Generated, Object, Position, Normal, Incoming, Image, Transform, MixRGB, Math,
+  VectorMath, Invert, Gamma, BrightContrast, HSV, Separate, Combine, ColorRamp, Fresnel,
+  LayerWeight, NormalMap,
+};
+
+// Registers hold a float as (f, f, f), colours and vectors as themselves; reading a colour or a
+// vector where a float is expected converts as Cycles does.
+enum class GraphConvert : uint8_t { None, ColorToFloat, VectorToFloat };
+
+struct GraphInput {
+  int32_t reg = -1;  // register, or -1: the constant
+  GraphConvert convert = GraphConvert::None;
+  Vec3 constant;
+};
+
+struct GraphNode {
+  GraphOp op = GraphOp::Const;
+  int mode = 0;        // the op's choice: blend, operation, transform kind, ...
+  bool clamp = false;  // mix_rgb, math: saturate the result
+  bool flag = false;   // image: unassociate alpha; transform: normalise
+  int index = -1;      // texture, UV map, ramp or matrix
+  std::array<GraphInput, 5> in{};
+  int out = 0;  // first output register; a node's outputs are consecutive
+};
+
+struct GraphClosure {
+  const ModelInfo* model = nullptr;
+  GraphInput weight;                 // colour (a float weight is stored grey)
+  std::vector<GraphInput> params;    // one per declared parameter, in declaration order
+  std::vector<PlainValue> constants; // the validated constant of each parameter
+  bool all_constant = true;
+  BxDFPtr prebuilt;                  // when every parameter is constant: built once
+  int normal_reg = -1;               // register of a perturbed normal, or -1
+};
+
+struct ColorRampTable {
+  static constexpr int kSize = 256;  // Cycles' RAMP_TABLE_SIZE
+  std::array<Vec3, kSize> color;
+  std::array<float, kSize> alpha;
+  bool interpolate = true;
+};
+
+// What the program reads at a hit (world space; n, ng already facing the viewer).
+struct ShadingContext {
+  const Scene* scene = nullptr;
+  const Hit* hit = nullptr;
+  Vec3 p, n, ng, incoming;
+  bool backfacing = false;
+};
+
+class MaterialGraph {
+ public:
+  static constexpr int kMaxRegisters = 256;
+  static constexpr size_t kMaxClosureParams = 48;
+
+  std::vector<GraphNode> nodes;
+  std::vector<GraphClosure> closures;
+  GraphInput emission;
+  std::vector<std::shared_ptr<const Texture>> textures;
+  std::vector<ColorRampTable> ramps;
+  std::vector<std::array<float, 12>> matrices;  // 3×4 rows
+  int num_registers = 0;
+
+  // Runs the program; `registers` holds kMaxRegisters.
+  void evaluate(const ShadingContext& ctx, Vec3* registers) const;
+  RGB emitted(const Vec3* registers) const;
+  bool emission_is_constant() const { return emission.reg < 0; }
+  // Adds each closure with a non-zero weight to `bsdf`, placing per-hit models in `arena`.
+  // `tangent` orients anisotropic closures (as the point's own frame does).
+  void add_closures(const Vec3* registers, const Vec3& tangent, ClosureArena& arena,
+                    BSDF& bsdf) const;
+  // Flags of the union of the closures' models (from their constant or default parameters).
+  uint32_t flags() const;
+};
+
+// Reads a register input, converting as the consumer expects.
+Vec3 read_input(const GraphInput& in, const Vec3* registers);
+inline float read_float(const GraphInput& in, const Vec3* registers) {
+  return read_input(in, registers).x;
+}
+
+}  // namespace bxdf::render

@@ -1,0 +1,81 @@
+// Image textures for material graphs, read through OpenImageIO and looked up exactly as
+// Cycles 3.4's image node does (kernel/device/cpu/image.h, svm/image.h): closest, bilinear or
+// cubic B-spline interpolation of the texel grid with no MIP filtering, texel centres at
+// (i + 0.5)/width, Repeat/Extend/Clip, sRGB images interpolated as stored and converted to
+// linear after the lookup (Cycles' compress_as_srgb), colour premultiplied by alpha in memory.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "bxdf/spectrum.h"
+
+namespace bxdf::render {
+
+enum class TextureInterpolation { Closest, Linear, Cubic };
+enum class TextureExtension { Repeat, Extend, Clip };
+enum class TextureColorspace { SRGB, Linear, NonColor };
+enum class TextureAlpha { Straight, Premultiplied, ChannelPacked, None };
+
+struct TextureSettings {
+  std::string path;
+  bool missing = false;  // the translator found no image: the lookup is magenta, as Cycles
+  TextureInterpolation interpolation = TextureInterpolation::Linear;
+  TextureExtension extension = TextureExtension::Repeat;
+  TextureColorspace colorspace = TextureColorspace::SRGB;
+  TextureAlpha alpha = TextureAlpha::Straight;
+};
+
+struct RGBA {
+  float r = 0.0f, g = 0.0f, b = 0.0f, a = 0.0f;
+};
+
+// Texels as Cycles keeps them: RGBA floats, row 0 at the bottom (v = 0), colour associated
+// with alpha unless the alpha mode says the channels are independent.
+struct TexelGrid {
+  int width = 0, height = 0;
+  std::vector<RGBA> texels;  // width * height, row-major from the bottom row
+};
+
+class Texture {
+ public:
+  // Reads the image (any format OpenImageIO reads; the scene's textures share an ImageCache).
+  // Throws ParameterError naming the path when it cannot be read.
+  Texture(const TextureSettings& settings, TexelGrid texels);
+
+  // The image node's Color and Alpha at (u, v): Cycles' interpolation and extension, then
+  // alpha unassociated when `unassociate` (the node's Alpha output is used), then sRGB → linear.
+  RGBA lookup(float u, float v, bool unassociate) const;
+
+  const TextureSettings& settings() const { return settings_; }
+  const TexelGrid& texels() const { return grid_; }
+
+ private:
+  RGBA interpolate(float u, float v) const;
+
+  TextureSettings settings_;
+  TexelGrid grid_;
+};
+
+// Cycles' interpolation of a texel grid alone (no colour handling), for the lookup and tests.
+RGBA interpolate_texels(const TexelGrid& grid, TextureInterpolation interpolation,
+                        TextureExtension extension, float u, float v);
+
+// Loads textures once per (settings) and shares them between materials; thread-safe.
+class TextureStore {
+ public:
+  TextureStore();
+  ~TextureStore();
+  std::shared_ptr<const Texture> get(const TextureSettings& settings);
+
+ private:
+  struct Cache;
+  std::unique_ptr<Cache> cache_;
+  std::mutex mutex_;
+  std::map<std::string, std::shared_ptr<const Texture>> loaded_;
+};
+
+}  // namespace bxdf::render

@@ -1,0 +1,30 @@
+// Normal Map in tangent space, as Cycles 3.4's svm_node_normal_map (svm/tex_coord.h).
+#include "bxdf/render/graph_ops.h"
+
+namespace bxdf::render {
+
+namespace {
+
+Vec3 safe_normalize(const Vec3& v) {
+  const float l = length(v);
+  return l != 0.0f ? v / l : v;
+}
+
+}  // namespace
+
+Vec3 normal_map_tangent(const Vec3& color, float strength, const Vec3& tangent, float sign,
+                        const Vec3& smooth_normal, const Vec3& shading_normal, bool backfacing) {
+  const Vec3 c = (color - Vec3(0.5f, 0.5f, 0.5f)) * 2.0f;
+  // Cycles uses the normal before it is turned towards the viewer, then turns the result.
+  const Vec3 b = cross(smooth_normal, tangent) * sign;
+  Vec3 n = safe_normalize(tangent * c.x + b * c.y + smooth_normal * c.z);
+  if (backfacing) n = -n;
+  if (strength != 1.0f) {
+    const float s = std::max(strength, 0.0f);
+    n = safe_normalize(shading_normal + (n - shading_normal) * s);
+  }
+  if (n == Vec3(0.0f, 0.0f, 0.0f)) n = shading_normal;
+  return n;
+}
+
+}  // namespace bxdf::render

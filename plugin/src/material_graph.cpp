@@ -1,0 +1,159 @@
+#include "bxdf/render/material_graph.h"
+
+#include "bxdf/render/graph_ops.h"
+#include "bxdf/render/scene.h"
+
+namespace bxdf::render {
+
+namespace {
+
+Vec3 splat(float v) { return {v, v, v}; }
+
+}  // namespace
+
+Vec3 read_input(const GraphInput& in, const Vec3* registers) {
+  const Vec3 v = in.reg < 0 ? in.constant : registers[in.reg];
+  switch (in.convert) {
+    case GraphConvert::None: return v;
+    case GraphConvert::ColorToFloat: return splat(luminance(v));
+    case GraphConvert::VectorToFloat: return splat((v.x + v.y + v.z) * (1.0f / 3.0f));
+  }
+  return v;
+}
+
+void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
+  const Scene& scene = *ctx.scene;
+  for (const GraphNode& node : nodes) {
+    auto in = [&](int i) { return read_input(node.in[size_t(i)], r); };
+    auto in_float = [&](int i) { return read_float(node.in[size_t(i)], r); };
+    Vec3* out = r + node.out;
+    switch (node.op) {
+      case GraphOp::Const: out[0] = in(0); break;
+      case GraphOp::UV: out[0] = scene.uv(*ctx.hit, node.index); break;
+      case GraphOp::Generated: out[0] = scene.generated(*ctx.hit, ctx.p); break;
+      case GraphOp::Object: out[0] = scene.object_position(*ctx.hit, ctx.p); break;
+      case GraphOp::Position: out[0] = ctx.p; break;
+      case GraphOp::Normal: out[0] = ctx.n; break;
+      case GraphOp::Incoming: out[0] = ctx.incoming; break;
+      case GraphOp::Image: {
+        const Vec3 uv = in(0);
+        const RGBA c = textures[size_t(node.index)]->lookup(uv.x, uv.y, node.flag);
+        out[0] = Vec3(c.r, c.g, c.b);
+        out[1] = splat(c.a);
+        break;
+      }
+      case GraphOp::Transform:
+        out[0] = transform(matrices[size_t(node.index)], TransformKind(node.mode), in(0), node.flag);
+        break;
+      case GraphOp::MixRGB:
+        out[0] = mix_rgb(MixBlend(node.mode), in_float(0), in(1), in(2), node.clamp);
+        break;
+      case GraphOp::Math:
+        out[0] = splat(math(MathOp(node.mode), in_float(0), in_float(1), in_float(2), node.clamp));
+        break;
+      case GraphOp::VectorMath: {
+        float value = 0.0f;
+        vector_math(VectorMathOp(node.mode), in(0), in(1), in(2), in_float(3), &out[0], &value);
+        out[1] = splat(value);
+        break;
+      }
+      case GraphOp::Invert: out[0] = invert(in_float(0), in(1)); break;
+      case GraphOp::Gamma: out[0] = gamma(in(0), in_float(1)); break;
+      case GraphOp::BrightContrast: out[0] = bright_contrast(in(0), in_float(1), in_float(2)); break;
+      case GraphOp::HSV:
+        out[0] = hsv(in_float(0), in_float(1), in_float(2), in_float(3), in(4));
+        break;
+      case GraphOp::Separate: {
+        const Vec3 v = in(0);
+        out[0] = splat(v.x);
+        out[1] = splat(v.y);
+        out[2] = splat(v.z);
+        break;
+      }
+      case GraphOp::Combine: out[0] = Vec3(in_float(0), in_float(1), in_float(2)); break;
+      case GraphOp::ColorRamp: {
+        float alpha = 0.0f;
+        color_ramp(ramps[size_t(node.index)], in_float(0), &out[0], &alpha);
+        out[1] = splat(alpha);
+        break;
+      }
+      case GraphOp::Fresnel:
+        out[0] = splat(fresnel_node(in_float(0), ctx.incoming,
+                                    node.in[1].reg < 0 ? ctx.n : in(1), ctx.backfacing));
+        break;
+      case GraphOp::LayerWeight: {
+        float fresnel = 0.0f, facing = 0.0f;
+        layer_weight(in_float(0), ctx.incoming, node.in[1].reg < 0 ? ctx.n : in(1),
+                     ctx.backfacing, &fresnel, &facing);
+        out[0] = splat(fresnel);
+        out[1] = splat(facing);
+        break;
+      }
+      case GraphOp::NormalMap: {
+        Vec3 tangent;
+        float sign = 1.0f;
+        if (!scene.tangent(*ctx.hit, node.index, &tangent, &sign)) {
+          out[0] = ctx.n;  // Cycles: no tangent attribute, unperturbed normal
+          break;
+        }
+        out[0] = normal_map_tangent(in(1), in_float(0), tangent, sign,
+                                    scene.smooth_normal(*ctx.hit), ctx.n, ctx.backfacing);
+        break;
+      }
+    }
+  }
+}
+
+RGB MaterialGraph::emitted(const Vec3* registers) const {
+  const Vec3 e = read_input(emission, registers);
+  return RGB(std::max(e.x, 0.0f), std::max(e.y, 0.0f), std::max(e.z, 0.0f));
+}
+
+void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
+                                 ClosureArena& arena, BSDF& bsdf) const {
+  PlainValue values[kMaxClosureParams];
+  for (const GraphClosure& c : closures) {
+    const Vec3 w = read_input(c.weight, registers);
+    const RGB weight(std::max(w.x, 0.0f), std::max(w.y, 0.0f), std::max(w.z, 0.0f));
+    // Cycles drops closures whose weight is below CLOSURE_WEIGHT_CUTOFF.
+    if (!(weight.r + weight.g + weight.b > 3e-5f) || !finite_nonnegative(weight)) continue;
+    const BxDF* model = c.prebuilt.get();
+    if (!model) {
+      for (size_t i = 0; i < c.params.size(); ++i) {
+        const GraphInput& in = c.params[i];
+        if (in.reg < 0) {
+          values[i] = c.constants[i];
+        } else {
+          const Vec3 v = read_input(in, registers);
+          values[i] = clamp_plain(c.model->params[i], PlainValue{v.x, v.y, v.z});
+        }
+      }
+      model = c.model->place(values, arena);
+      if (!model) continue;  // cannot happen: the reader checked the arena's capacity
+    }
+    if (c.normal_reg >= 0) {
+      Vec3 n = registers[c.normal_reg];
+      if (normalize_direction(n)) {
+        const Frame frame = Frame::from_normal_tangent(n, tangent);
+        bsdf.add(model, weight, &frame);
+        continue;
+      }
+    }
+    bsdf.add(model, weight);
+  }
+}
+
+uint32_t MaterialGraph::flags() const {
+  uint32_t f = 0;
+  for (const GraphClosure& c : closures) {
+    if (c.prebuilt) {
+      f |= c.prebuilt->flags();
+    } else {
+      ClosureArena arena;
+      if (const BxDF* m = c.model->place(c.constants.data(), arena)) f |= m->flags();
+    }
+  }
+  return f;
+}
+
+}  // namespace bxdf::render
