@@ -88,7 +88,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
   float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
   Vec3 prev_p;
   const auto& lights = scene_.lights();
-  ShadingScratch scratch;  // per call, on the stack: graph registers and per-hit closures
+  // Per thread, made once: graph registers and per-hit closures (reset at every hit).
+  thread_local ShadingScratch scratch;
 
   for (int bounce = 0;; ++bounce) {
     Hit hit;

@@ -487,6 +487,12 @@ class GraphReader {
       c.prebuilt = make(name, validated);
     } else {
       c.constants = plain_values(*c.model, validated);
+      for (const ParamSpec& spec : c.model->params) {
+        // clamp_plain's bounds, once: the per-hit clamp is then two compares.
+        const PlainValue lo = clamp_plain(spec, {-INFINITY, -INFINITY, -INFINITY});
+        const PlainValue hi = clamp_plain(spec, {INFINITY, INFINITY, INFINITY});
+        c.ranges.push_back({lo.x, hi.x});
+      }
       for (size_t i = 0; i < c.params.size(); ++i)
         if (c.params[i].reg < 0) c.params[i].constant = Vec3(c.constants[i].x, c.constants[i].y, c.constants[i].z);
     }
