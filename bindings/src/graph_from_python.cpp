@@ -1,5 +1,6 @@
 #include "graph_from_python.h"
 
+#include <pybind11/eval.h>
 #include <pybind11/numpy.h>
 
 #include <cmath>
