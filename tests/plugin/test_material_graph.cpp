@@ -182,3 +182,47 @@ TEST(MaterialGraph, MixOfTwoClosuresWithATextureFactor) {
   EXPECT_GT(checked, 500);
   std::remove(path.c_str());
 }
+
+TEST(MaterialGraph, MeshAttributesUVMapsTangentsObjectAndGenerated) {
+  Scene scene;
+  scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+  // One triangle in object space (0,0,0), (2,0,0), (0,4,0), placed at +(10, 0, 1).
+  Mesh m;
+  m.positions = {10, 0, 1, 12, 0, 1, 10, 4, 1};
+  m.indices = {0, 1, 2};
+  m.uv_maps = {{0, 0, 1, 0, 0, 1}, {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f}};
+  m.tangents = {{1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, -1}, {}};
+  m.object_to_world = {1, 0, 0, 10, 0, 1, 0, 0, 0, 0, 1, 1};
+  scene.add_mesh(m.view());
+  scene.commit();
+  Hit hit;
+  hit.b1 = 0.25f;  // p = p0 + 0.25 (p1 − p0) + 0.5 (p2 − p0) = (10.5, 2, 1)
+  hit.b2 = 0.5f;
+  const Vec3 p(10.5f, 2.0f, 1.0f);
+  const Vec3 uv0 = scene.uv(hit, 0), uv1 = scene.uv(hit, 1), none = scene.uv(hit, 2);
+  EXPECT_FLOAT_EQ(uv0.x, 0.25f);
+  EXPECT_FLOAT_EQ(uv0.y, 0.5f);
+  EXPECT_FLOAT_EQ(uv1.x, 0.5f);
+  EXPECT_EQ(none.x, 0.0f);
+  Vec3 t;
+  float sign = 0.0f;
+  ASSERT_TRUE(scene.tangent(hit, 0, &t, &sign));
+  EXPECT_FLOAT_EQ(t.x, 0.5f);  // interpolated, unnormalised: 0.25·(1,0,0) + ... + 0.5·(0,1,0)
+  EXPECT_FLOAT_EQ(t.y, 0.5f);
+  EXPECT_FLOAT_EQ(sign, 0.25f * 1.0f + 0.25f * 1.0f + 0.5f * -1.0f);
+  EXPECT_FALSE(scene.tangent(hit, 1, &t, &sign));
+  const Vec3 obj = scene.object_position(hit, p);
+  EXPECT_NEAR(obj.x, 0.5f, 1e-5f);
+  EXPECT_NEAR(obj.y, 2.0f, 1e-5f);
+  EXPECT_NEAR(obj.z, 0.0f, 1e-5f);
+  // Generated: the object-space box [0,2]×[0,4]×[0,0] (a flat axis counts as size 1 about 0).
+  const Vec3 gen = scene.generated(hit, p);
+  EXPECT_NEAR(gen.x, 0.25f, 1e-5f);
+  EXPECT_NEAR(gen.y, 0.5f, 1e-5f);
+  EXPECT_NEAR(gen.z, 0.5f, 1e-5f);
+  // A singular object transform is refused, naming the mesh.
+  Scene bad;
+  bad.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+  m.object_to_world = {0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  EXPECT_THROW(bad.add_mesh(m.view()), ParameterError);
+}
