@@ -37,7 +37,8 @@ for r in rows:
     print(f"{r['name']:58s} {rate:10.1f} {extra}")
 PY
 
-for other in "$BUILD/bench/measured/bxdf_bench_measured" "$BUILD/bench/render/bxdf_bench_render"; do
+for other in "$BUILD/bench/measured/bxdf_bench_measured" "$BUILD/bench/render/bxdf_bench_render" \
+             "$BUILD/bench/render/bxdf_bench_textured"; do
   if [ -x "$other" ]; then
     echo
     echo "== $(basename "$other")"

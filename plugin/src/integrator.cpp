@@ -88,7 +88,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
   float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
   Vec3 prev_p;
   const auto& lights = scene_.lights();
-  ShadingScratch scratch;  // per call, on the stack: graph registers and per-hit closures
+  // Per thread, made once: graph registers and per-hit closures (reset at every hit).
+  thread_local ShadingScratch scratch;
 
   for (int bounce = 0;; ++bounce) {
     Hit hit;
@@ -125,12 +126,18 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     BSDF bsdf(Frame::from_normal_tangent(sp.ns, sp.tangent), sp.ng);
     RGB emitted = mat.emission;
     if (mat.graph) {
-      // A node material: run its program at this point, then build its closures in place.
-      const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped};
-      mat.graph->evaluate(ctx, scratch.registers);
+      // A node material: run its program at this point, then build its closures in place
+      // (not at a path's last hit, where only emission counts).
+      const bool scatters = bounce <= settings_.max_bounces;
+      if (scatters || !mat.graph->emission_is_constant()) {
+        const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped};
+        mat.graph->evaluate(ctx, scratch.registers);
+      }
       if (!mat.graph->emission_is_constant()) emitted = mat.graph->emitted(scratch.registers);
-      scratch.arena.reset();
-      mat.graph->add_closures(scratch.registers, sp.tangent, scratch.arena, bsdf);
+      if (scatters) {
+        scratch.arena.reset();
+        mat.graph->add_closures(scratch.registers, sp.tangent, scratch.arena, bsdf);
+      }
     } else {
       for (const BxDFPtr& c : mat.components) bsdf.add(c.get());
     }

@@ -112,6 +112,8 @@ RGB MaterialGraph::emitted(const Vec3* registers) const {
 void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
                                  ClosureArena& arena, BSDF& bsdf) const {
   PlainValue values[kMaxClosureParams];
+  int frame_reg = -1;  // closures that share a normal share its frame
+  Frame frame;
   for (const GraphClosure& c : closures) {
     const Vec3 w = read_input(c.weight, registers);
     const RGB weight(std::max(w.x, 0.0f), std::max(w.y, 0.0f), std::max(w.z, 0.0f));
@@ -124,17 +126,23 @@ void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
         if (in.reg < 0) {
           values[i] = c.constants[i];
         } else {
+          // Into the registry's range, as Cycles clamps closure inputs (NaN to the lower end).
           const Vec3 v = read_input(in, registers);
-          values[i] = clamp_plain(c.model->params[i], PlainValue{v.x, v.y, v.z});
+          const float lo = c.ranges[i][0], hi = c.ranges[i][1];
+          auto clamp_one = [lo, hi](float x) { return !(x >= lo) ? lo : (x > hi ? hi : x); };
+          values[i] = {clamp_one(v.x), clamp_one(v.y), clamp_one(v.z)};
         }
       }
       model = c.model->place(values, arena);
       if (!model) continue;  // cannot happen: the reader checked the arena's capacity
     }
     if (c.normal_reg >= 0) {
-      Vec3 n = registers[c.normal_reg];
-      if (normalize_direction(n)) {
-        const Frame frame = Frame::from_normal_tangent(n, tangent);
+      if (c.normal_reg != frame_reg) {
+        Vec3 n = registers[c.normal_reg];
+        frame_reg = normalize_direction(n) ? c.normal_reg : -2;
+        if (frame_reg >= 0) frame = Frame::from_normal_tangent(n, tangent);
+      }
+      if (frame_reg == c.normal_reg) {
         bsdf.add(model, weight, &frame);
         continue;
       }

@@ -123,6 +123,7 @@ class GraphReader {
     if (j.contains("nodes")) {
       const json& nodes = j["nodes"];
       if (!nodes.is_array()) fail(field + ".nodes", "expected an array of nodes, got " + got(nodes));
+      total_nodes_ = nodes.size();
       for (size_t i = 0; i < nodes.size(); ++i)
         read_node(nodes[i], field + ".nodes[" + std::to_string(i) + "]", int(i));
     }
@@ -261,7 +262,7 @@ class GraphReader {
     const long long node = j["node"].get<long long>();
     if (node < 0 || node >= before)
       fail(field, "node " + std::to_string(node) + " is not earlier than " + std::to_string(before) +
-                      (node >= 0 && node < static_cast<long long>(node_count_) ? "" : " (no such node)"));
+                      (node >= 0 && node < static_cast<long long>(total_nodes_) ? "" : " (no such node)"));
     NodeOutputs& source = outputs_[size_t(node)];
     std::vector<std::string> names;
     for (const OutputSpec& o : source.spec->outputs) names.emplace_back(o.name);
@@ -486,6 +487,12 @@ class GraphReader {
       c.prebuilt = make(name, validated);
     } else {
       c.constants = plain_values(*c.model, validated);
+      for (const ParamSpec& spec : c.model->params) {
+        // clamp_plain's bounds, once: the per-hit clamp is then two compares.
+        const PlainValue lo = clamp_plain(spec, {-INFINITY, -INFINITY, -INFINITY});
+        const PlainValue hi = clamp_plain(spec, {INFINITY, INFINITY, INFINITY});
+        c.ranges.push_back({lo.x, hi.x});
+      }
       for (size_t i = 0; i < c.params.size(); ++i)
         if (c.params[i].reg < 0) c.params[i].constant = Vec3(c.constants[i].x, c.constants[i].y, c.constants[i].z);
     }
@@ -502,7 +509,7 @@ class GraphReader {
   std::shared_ptr<MaterialGraph> g_ = std::make_shared<MaterialGraph>();
   std::vector<NodeOutputs> outputs_;  // per file node
   std::vector<size_t> node_of_;       // file node → program node
-  size_t node_count_ = 0;
+  size_t node_count_ = 0, total_nodes_ = 0;
   int next_register_ = 0;
 };
 

@@ -232,7 +232,7 @@ void read_camera(const Reader& r, const json& j, CameraSettings& c) {
 // {"name": ..., "graph": {...}}: a material graph (docs/material-graph.md).
 uint32_t read_graph_material(const Reader& r, const json& j, const std::string& path, Scene& scene,
                              TextureStore& textures) {
-  r.only_keys(j, path, {"graph", "name"});
+  r.only_keys(j, path, {"graph", "name", "format", "version"});
   Material m;
   try {
     m.graph = read_material_graph(j["graph"], "graph", r.base_, textures);

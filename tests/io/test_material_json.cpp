@@ -113,3 +113,22 @@ TEST_F(MaterialJson, FailedWriteLeavesTheOldFileIntact) {
   for (const auto& entry : fs::directory_iterator(dir_)) files += entry.is_regular_file();
   EXPECT_EQ(files, 1u) << "the temporary file was not removed";
 }
+
+TEST_F(MaterialJson, NodeMaterialsKeepTheirGraph) {
+  const std::string text = R"({"format": "bxdf-material", "version": 1, "name": "wood",
+    "graph": {"nodes": [{"op": "uv"}], "closures": [{"model": "lambertian"}]}})";
+  const std::string p = write("g.json", text);
+  const io::MaterialDesc d = io::load_material_desc(p);
+  EXPECT_EQ(d.name, "wood");
+  EXPECT_TRUE(d.model.empty());
+  ASSERT_TRUE(d.graph.is_object());
+  EXPECT_EQ(d.graph["nodes"][0]["op"], "uv");
+  const std::string saved = (dir_ / "g2.json").string();
+  io::save_material(d, saved);
+  EXPECT_EQ(io::load_material_desc(saved).graph, d.graph);
+  // One model is asked for: refused, saying what the file is.
+  EXPECT_NE(load_error(text).find("a node material"), std::string::npos);
+  EXPECT_NE(load_error(R"({"graph": 3})").find("field 'graph': expected an object"), std::string::npos);
+  EXPECT_NE(load_error(R"({"graph": {}, "model": "lambertian"})").find("field 'model': unknown"),
+            std::string::npos);
+}

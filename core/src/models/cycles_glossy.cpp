@@ -71,7 +71,9 @@ ModelInfo cycles_glossy_model() {
                distribution = param_index(m.params, "distribution"),
                roughness = param_index(m.params, "roughness"),
                anisotropy = param_index(m.params, "anisotropy");
-  const float beckmann_choice = 1.0f;  // index of "beckmann" in the choices above
+  const auto& choices = m.params[distribution].choices;
+  const float beckmann_choice =
+      float(std::find(choices.begin(), choices.end(), "beckmann") - choices.begin());
   m.place = [=](const PlainValue* v, ClosureArena& arena) -> const BxDF* {
     return build_cycles_glossy(plain_rgb(v[color]), v[distribution].x == beckmann_choice,
                                v[roughness].x, v[anisotropy].x,

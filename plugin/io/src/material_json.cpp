@@ -126,11 +126,35 @@ ParamSet params_from_json(const std::string& model, const json& j, const std::st
   }
 }
 
+namespace {
+
+// {"format", "version", "name", "graph"}: a node material, kept as JSON for the renderer.
+MaterialDesc graph_material_from_json(const json& j, const std::string& where) {
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (it.key() != "format" && it.key() != "version" && it.key() != "name" && it.key() != "graph")
+      throw ParameterError(where + ": field '" + it.key() +
+                           "': unknown; a node material has format, version, name, graph");
+  if (!j["graph"].is_object()) bad_field(where, "graph", "an object (docs/material-graph.md)", j["graph"]);
+  MaterialDesc m;
+  if (j.contains("name")) {
+    if (!j["name"].is_string()) bad_field(where, "name", "a string", j["name"]);
+    m.name = j["name"].get<std::string>();
+  }
+  m.graph = j["graph"];
+  return m;
+}
+
+}  // namespace
+
 json material_to_json(const MaterialDesc& m) {
   json j = json::object();
   j["format"] = kMaterialFormat;
   j["version"] = kMaterialVersion;
   if (!m.name.empty()) j["name"] = m.name;
+  if (!m.graph.is_null()) {
+    j["graph"] = m.graph;
+    return j;
+  }
   j["model"] = m.model;
   j["params"] = params_to_json(m.params);
   return j;
@@ -148,6 +172,7 @@ MaterialDesc material_from_json(const json& j, const std::string& where) {
     if (!v.is_number_integer() || v.get<int>() < 1 || v.get<int>() > kMaterialVersion)
       bad_field(where, "version", "an integer from 1 to " + std::to_string(kMaterialVersion), v);
   }
+  if (j.contains("graph")) return graph_material_from_json(j, where);
   for (auto it = j.begin(); it != j.end(); ++it) {
     static const char* known[] = {"format", "version", "name", "model", "preset", "params"};
     bool ok = false;
@@ -222,6 +247,9 @@ MaterialDesc load_material_desc(const std::string& path) {
 
 BxDFPtr load_material(const std::string& path) {
   const MaterialDesc m = load_material_desc(path);
+  if (!m.graph.is_null())
+    throw ParameterError(path + ": a node material (a graph of closures, not one model): use it as "
+                                "a scene material");
   return make(m.model, m.params);
 }
 

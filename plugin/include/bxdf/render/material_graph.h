@@ -51,6 +51,7 @@ struct GraphClosure {
   GraphInput weight;                 // colour (a float weight is stored grey)
   std::vector<GraphInput> params;    // one per declared parameter, in declaration order
   std::vector<PlainValue> constants; // the validated constant of each parameter
+  std::vector<std::array<float, 2>> ranges;  // per parameter: the registry's range, as floats
   bool all_constant = true;
   BxDFPtr prebuilt;                  // when every parameter is constant: built once
   int normal_reg = -1;               // register of a perturbed normal, or -1

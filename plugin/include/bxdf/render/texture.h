@@ -5,6 +5,7 @@
 // linear after the lookup (Cycles' compress_as_srgb), colour premultiplied by alpha in memory.
 #pragma once
 
+#include <array>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -33,11 +34,15 @@ struct RGBA {
   float r = 0.0f, g = 0.0f, b = 0.0f, a = 0.0f;
 };
 
-// Texels as Cycles keeps them: RGBA floats, row 0 at the bottom (v = 0), colour associated
-// with alpha unless the alpha mode says the channels are independent.
+// Texels as Cycles keeps them: row 0 at the bottom (v = 0), colour associated with alpha
+// unless the alpha mode says the channels are independent; 8-bit images as bytes (read as
+// byte/255, a quarter of the memory of floats; one byte per texel for one-channel images, as
+// Cycles' IMAGE_DATA_TYPE_BYTE), others as floats.
 struct TexelGrid {
   int width = 0, height = 0;
-  std::vector<RGBA> texels;  // width * height, row-major from the bottom row
+  std::vector<RGBA> texels;                       // width * height, or empty for bytes
+  std::vector<std::array<unsigned char, 4>> bytes;  // width * height, or empty
+  std::vector<unsigned char> grey_bytes;  // one-channel 8-bit images (alpha 1), or empty
 };
 
 class Texture {

@@ -23,6 +23,9 @@ struct MaterialDesc {
   std::string name;   // optional, free text
   std::string model;  // registry name
   ParamSet params;    // validated: every parameter of the model is present
+  // A node material instead ({"graph": {...}}, docs/material-graph.md): model and params are then
+  // empty; the renderer reads and checks the graph (read_material_graph).
+  nlohmann::json graph = nullptr;
 };
 
 // Parameters as JSON: numbers, [r, g, b], strings, booleans, lists of objects.
@@ -41,6 +44,7 @@ MaterialDesc material_from_json(const nlohmann::json& j, const std::string& wher
 void save_material(const MaterialDesc& material, const std::string& path);
 void save_material(const BxDF& model, const std::string& path, const std::string& name = "");
 MaterialDesc load_material_desc(const std::string& path);
+// Refuses a node material (a graph is not one model) with a message saying so.
 BxDFPtr load_material(const std::string& path);
 
 }  // namespace bxdf::io

@@ -1,0 +1,228 @@
+// Material graphs in the renderer: graphs read from JSON (bad ones refused with the field's
+// path), a textured material whose texture is constant renders exactly as the untextured one,
+// and a Mix of two closures with a texture factor renders as the per-pixel mix of the two.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "bxdf/registry.h"
+#include "bxdf/render/camera.h"
+#include "bxdf/render/material_graph_json.h"
+#include "bxdf/render/renderer.h"
+#include "bxdf/render/scene_json.h"
+#include "bxdf/render/shapes.h"
+
+using namespace bxdf;
+using namespace bxdf::render;
+using nlohmann::json;
+
+namespace {
+
+// A float image as a PFM file (OpenImageIO reads it; rows bottom first, little endian).
+std::string write_pfm(const std::string& name, int w, int h, const std::vector<float>& rgb) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream f(path, std::ios::binary);
+  f << "PF\n" << w << " " << h << "\n-1.0\n";
+  f.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size() * sizeof(float)));
+  return path;
+}
+
+std::string graph_error(const json& graph) {
+  TextureStore store;
+  try {
+    read_material_graph(graph, "graph", "", store);
+  } catch (const GraphFieldError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+// A floor quad filling the view of a camera looking straight down, lit by a point light.
+std::vector<float> render_floor(const std::shared_ptr<const MaterialGraph>& graph,
+                                const BxDFPtr& plain) {
+  Scene scene;
+  Material m;
+  if (graph) m.graph = graph;
+  else m.components.push_back(plain);
+  scene.add_material(std::move(m));
+  scene.add_mesh(make_quad(Vec3(-1, -1, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), 0).view());
+  scene.add_light(point_light(Vec3(0.3f, -0.2f, 1.5f), RGB(3.0f)));
+  scene.commit();
+  CameraSettings c;
+  c.camera_to_world = look_at(Vec3(0, 0, 3), Vec3(0, 0, 0), Vec3(0, 1, 0));
+  RenderSettings s;
+  s.width = 16;
+  s.height = 16;
+  s.samples_per_pixel = 1;
+  s.max_bounces = 0;
+  s.filter = FilterType::PixelCenter;
+  s.threads = 1;
+  return render_scene(scene, c, s).rgba();
+}
+
+}  // namespace
+
+TEST(MaterialGraph, BadGraphsAreRefusedWithTheFieldPath) {
+  const json node0 = {{"op", "uv"}};
+  EXPECT_EQ(graph_error({{"nodes", {node0, {{"op", "separate"}, {"vector", {{"node", 7}}}}}},
+                         {"closures", json::array({{{"model", "lambertian"}}})}}),
+            "graph.nodes[1].vector: node 7 is not earlier than 1 (no such node)");
+  EXPECT_EQ(graph_error({{"nodes", {{{"op", "separate"}, {"vector", {{"node", 0}}}}}}}),
+            "graph.nodes[0].vector: node 0 is not earlier than 0");
+  EXPECT_NE(graph_error({{"nodes", {{{"op", "warp"}}}}}).find("graph.nodes[0].op: expected one of {const, uv,"),
+            std::string::npos);
+  EXPECT_NE(graph_error({{"nodes", {{{"op", "mix_rgb"}, {"blend", "mixx"}}}}}).find("graph.nodes[0].blend: expected one of {mix,"),
+            std::string::npos);
+  EXPECT_NE(graph_error({{"nodes", {node0, {{"op", "separate"}, {"vector", {{"node", 0}, {"out", "colour"}}}}}}})
+                .find("graph.nodes[1].vector.out: expected one of {vector}"),
+            std::string::npos);
+  // Closures: unknown parameter, enum by reference, constants validated with range, weights.
+  const json sep = {{"op", "separate"}, {"vector", {{"node", 0}}}};
+  EXPECT_NE(graph_error({{"closures", {{{"model", "lambertian"}, {"params", {{"albedo", 0.5}}}}}}})
+                .find("graph.closures[0].params.albedo: unknown parameter of 'lambertian'"),
+            std::string::npos);
+  const std::string enum_ref = graph_error(
+      {{"nodes", {node0, sep}},
+       {"closures", {{{"model", "cycles_glossy"}, {"params", {{"distribution", {{"node", 1}, {"out", "x"}}}}}}}}});
+  EXPECT_NE(enum_ref.find("graph.closures[0].params.distribution: enum parameters must be constants"),
+            std::string::npos) << enum_ref;
+  const std::string range = graph_error({{"closures", {{{"model", "cycles_glossy"}, {"params", {{"roughness", 1.5}}}}}}});
+  EXPECT_NE(range.find("graph.closures[0].params"), std::string::npos) << range;
+  EXPECT_NE(range.find("roughness"), std::string::npos) << range;
+  EXPECT_NE(range.find("[0, 1]"), std::string::npos) << range;
+  EXPECT_NE(graph_error({{"closures", {{{"model", "lambertian"}, {"weight", -1}}}}})
+                .find("graph.closures[0].weight: must be in [0, inf)"),
+            std::string::npos);
+  EXPECT_NE(graph_error({{"closures", {{{"model", "lambertian"}, {"normal", {0, 0, 1}}}}}})
+                .find("graph.closures[0].normal: expected a node reference"),
+            std::string::npos);
+  EXPECT_NE(graph_error({{"textures", {{{"path", "/no/such/image.png"}}}}}).find("graph.textures[0].path: texture '/no/such/image.png': cannot be read"),
+            std::string::npos);
+  EXPECT_NE(graph_error({{"nodes", {{{"op", "color_ramp"}, {"stops", {{0.5, 1, 1, 1, 1}, {0.1, 0, 0, 0, 1}}}}}}})
+                .find("graph.nodes[0].stops: color ramp stops must be sorted"),
+            std::string::npos);
+  EXPECT_EQ(graph_error(json::object()), "graph: a graph needs at least one closure or an emission");
+}
+
+TEST(MaterialGraph, SceneFilesReportTheGraphFieldPath) {
+  const std::string text = R"({
+    "camera": {"position": [0, -3, 0], "look_at": [0, 0, 0]},
+    "materials": {"m": {"graph": {"nodes": [{"op": "uv"}, {"op": "math", "operation": "add",
+                                             "a": {"node": 4, "out": "value"}}],
+                                  "closures": [{"model": "lambertian"}]}}},
+    "meshes": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})";
+  try {
+    parse_scene_json(text, "scene.json", ".");
+    FAIL() << "accepted";
+  } catch (const SceneFileError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "scene.json: field 'materials.m.graph.nodes[1].a': node 4 is not earlier than 1 (no such node)");
+  }
+}
+
+TEST(MaterialGraph, ConstantTextureRendersLikeTheUntexturedMaterial) {
+  const std::string path = write_pfm("bxdf_graph_constant.pfm", 3, 2, std::vector<float>(18, 0.5f));
+  TextureStore store;
+  const json graph = {
+      {"textures", {{{"path", path}, {"colorspace", "linear"}, {"interpolation", "cubic"}}}},
+      {"nodes", {{{"op", "uv"}}, {{"op", "image"}, {"texture", 0}, {"vector", {{"node", 0}}}},
+                 {{"op", "math"}, {"operation", "multiply"}, {"a", {{"node", 1}, {"out", "color"}}}, {"b", 0.6}}}},
+      {"closures", {{{"model", "cycles_glossy"},
+                     {"params", {{"color", {{"node", 1}, {"out", "color"}}},
+                                 {"roughness", {{"node", 2}, {"out", "value"}}}}}}}}};
+  ParamSet p;
+  p.set("color", RGBValue{0.5, 0.5, 0.5});
+  p.set("roughness", double(0.5f * 0.6f));
+  const std::vector<float> textured = render_floor(read_material_graph(graph, "graph", "", store), nullptr);
+  const std::vector<float> plain = render_floor(nullptr, make("cycles_glossy", p));
+  ASSERT_EQ(textured.size(), plain.size());
+  float peak = 0.0f;
+  for (size_t i = 0; i < plain.size(); ++i) {
+    // Equal up to float rounding (the cubic B-spline's weights sum to 1 within an ulp or two).
+    EXPECT_NEAR(textured[i], plain[i], 1e-6f * (1.0f + plain[i])) << i;
+    peak = std::max(peak, plain[i]);
+  }
+  EXPECT_GT(peak, 0.01f);
+  std::remove(path.c_str());
+}
+
+TEST(MaterialGraph, MixOfTwoClosuresWithATextureFactor) {
+  // A 2×1 texture: factor 0.2 on the left half of the floor (u < 0.5), 0.9 on the right.
+  const std::string path = write_pfm("bxdf_graph_mix.pfm", 2, 1, {0.2f, 0.2f, 0.2f, 0.9f, 0.9f, 0.9f});
+  TextureStore store;
+  const json diffuse = {{"model", "cycles_oren_nayar"}, {"params", {{"color", {0.9, 0.2, 0.1}}, {"roughness", 0.4}}}};
+  const json glossy = {{"model", "cycles_glossy"}, {"params", {{"color", {0.2, 0.5, 0.9}}, {"roughness", 0.3}}}};
+  json mix = {{"textures", {{{"path", path}, {"colorspace", "linear"}, {"interpolation", "closest"}}}},
+              {"nodes", {{{"op", "image"}, {"texture", 0}},
+                         {{"op", "math"}, {"operation", "subtract"}, {"a", 1.0}, {"b", {{"node", 0}, {"out", "color"}}}}}}};
+  json d = diffuse, g = glossy;
+  d["weight"] = {{"node", 1}, {"out", "value"}};  // Mix Shader: (1 − fac) · first
+  g["weight"] = {{"node", 0}, {"out", "color"}};  // fac · second
+  mix["closures"] = {d, g};
+  const std::vector<float> mixed = render_floor(read_material_graph(mix, "graph", "", store), nullptr);
+  const std::vector<float> a = render_floor(read_material_graph({{"closures", {diffuse}}}, "graph", "", store), nullptr);
+  const std::vector<float> b = render_floor(read_material_graph({{"closures", {glossy}}}, "graph", "", store), nullptr);
+  const int w = 16;
+  int checked = 0;
+  for (int y = 0; y < w; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (x == w / 2 - 1 || x == w / 2) continue;  // the seam
+      // Pixel x < w/2 looks at u < 0.5 (the camera's right is +x, the floor's u).
+      const float fac = x < w / 2 ? 0.2f : 0.9f;
+      for (int c = 0; c < 3; ++c) {
+        const size_t i = size_t(4 * (y * w + x) + c);
+        EXPECT_NEAR(mixed[i], (1 - fac) * a[i] + fac * b[i], 1e-5f + 1e-5f * a[i]) << x << "," << y;
+        ++checked;
+      }
+    }
+  EXPECT_GT(checked, 500);
+  std::remove(path.c_str());
+}
+
+TEST(MaterialGraph, MeshAttributesUVMapsTangentsObjectAndGenerated) {
+  Scene scene;
+  scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+  // One triangle in object space (0,0,0), (2,0,0), (0,4,0), placed at +(10, 0, 1).
+  Mesh m;
+  m.positions = {10, 0, 1, 12, 0, 1, 10, 4, 1};
+  m.indices = {0, 1, 2};
+  m.uv_maps = {{0, 0, 1, 0, 0, 1}, {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f}};
+  m.tangents = {{1, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, -1}, {}};
+  m.object_to_world = {1, 0, 0, 10, 0, 1, 0, 0, 0, 0, 1, 1};
+  scene.add_mesh(m.view());
+  scene.commit();
+  Hit hit;
+  hit.b1 = 0.25f;  // p = p0 + 0.25 (p1 − p0) + 0.5 (p2 − p0) = (10.5, 2, 1)
+  hit.b2 = 0.5f;
+  const Vec3 p(10.5f, 2.0f, 1.0f);
+  const Vec3 uv0 = scene.uv(hit, 0), uv1 = scene.uv(hit, 1), none = scene.uv(hit, 2);
+  EXPECT_FLOAT_EQ(uv0.x, 0.25f);
+  EXPECT_FLOAT_EQ(uv0.y, 0.5f);
+  EXPECT_FLOAT_EQ(uv1.x, 0.5f);
+  EXPECT_EQ(none.x, 0.0f);
+  Vec3 t;
+  float sign = 0.0f;
+  ASSERT_TRUE(scene.tangent(hit, 0, &t, &sign));
+  EXPECT_FLOAT_EQ(t.x, 0.5f);  // interpolated, unnormalised: 0.25·(1,0,0) + ... + 0.5·(0,1,0)
+  EXPECT_FLOAT_EQ(t.y, 0.5f);
+  EXPECT_FLOAT_EQ(sign, 0.25f * 1.0f + 0.25f * 1.0f + 0.5f * -1.0f);
+  EXPECT_FALSE(scene.tangent(hit, 1, &t, &sign));
+  const Vec3 obj = scene.object_position(hit, p);
+  EXPECT_NEAR(obj.x, 0.5f, 1e-5f);
+  EXPECT_NEAR(obj.y, 2.0f, 1e-5f);
+  EXPECT_NEAR(obj.z, 0.0f, 1e-5f);
+  // Generated: the object-space box [0,2]×[0,4]×[0,0] (a flat axis counts as size 1 about 0).
+  const Vec3 gen = scene.generated(hit, p);
+  EXPECT_NEAR(gen.x, 0.25f, 1e-5f);
+  EXPECT_NEAR(gen.y, 0.5f, 1e-5f);
+  EXPECT_NEAR(gen.z, 0.5f, 1e-5f);
+  // A singular object transform is refused, naming the mesh.
+  Scene bad;
+  bad.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+  m.object_to_world = {0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  EXPECT_THROW(bad.add_mesh(m.view()), ParameterError);
+}
