@@ -188,7 +188,10 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
       sp.ng = -sp.ng;
       sp.ns = -sp.ns;
     }
-    BSDF bsdf(Frame::from_normal_tangent(sp.ns, sp.tangent), sp.ng);
+    // Reflection is judged against the shading normal, as Cycles' closures do: directions
+    // between the flat triangle and the smooth surface are lit (the terminator offset then lets
+    // their shadow rays out). Transmissive surfaces keep the geometric decision.
+    BSDF bsdf(Frame::from_normal_tangent(sp.ns, sp.tangent), transmissive ? sp.ng : sp.ns);
     for (const BxDFPtr& c : mat.components) bsdf.add(c.get());
 
     if (bsdf.has_non_delta()) L += beta * sample_one_light(hit, sp, bsdf, wo, rng, stats);
