@@ -153,18 +153,34 @@ void Environment::build_distribution() {
   map_w_ = std::max(map_w_, 1);
   map_h_ = std::max(map_h_, 1);
   const int cw = map_w_ + 1;
+  // L on a grid at half-cell spacing (cell corners, edge midpoints and centres). Cycles takes
+  // each cell's centre; a cell here takes the largest of its nine points instead, so that the
+  // bilinear footprint of a bright texel (a sun) never lies in a cell the map thinks dark —
+  // that would leave BSDF sampling alone to find it, as fireflies.
+  const int gw = 2 * map_w_ + 1, gh = 2 * map_h_ + 1;
+  std::vector<float> grid(size_t(gw) * gh);
+  for (int j = 0; j < gh; ++j)
+    for (int i = 0; i < gw; ++i)
+      grid[size_t(j) * gw + i] =
+          eval(equirect_to_direction(float(i) / (2 * map_w_), float(j) / (2 * map_h_))).average();
   std::vector<float> cond(size_t(cw) * map_h_ * 2);
   marginal_.assign(size_t(map_h_ + 1) * 2, 0.0f);
   double integral = 0.0;
   for (int y = 0; y < map_h_; ++y) {
     float* row = &cond[size_t(y) * cw * 2];
     const float v = (y + 0.5f) / map_h_;
-    for (int x = 0; x < map_w_; ++x)
-      row[2 * x] = eval(equirect_to_direction((x + 0.5f) / map_w_, v)).average();
-    const float row_integral = build_cdf(row, map_w_);
+    double centres = 0.0;
+    for (int x = 0; x < map_w_; ++x) {
+      float m = 0.0f;
+      for (int j = 2 * y; j <= 2 * y + 2; ++j)
+        for (int i = 2 * x; i <= 2 * x + 2; ++i) m = std::max(m, grid[size_t(j) * gw + i]);
+      row[2 * x] = m;
+      centres += grid[size_t(2 * y + 1) * gw + 2 * x + 1];
+    }
+    build_cdf(row, map_w_);
     const float sin_theta = std::sin(kPi * v);
-    marginal_[2 * y] = row_integral * sin_theta;
-    integral += double(row_integral) * sin_theta;
+    marginal_[2 * y] = row[2 * map_w_] * sin_theta;
+    integral += centres / map_w_ * sin_theta;
   }
   const float total = build_cdf(marginal_.data(), map_h_);
   integral_ = static_cast<float>(integral / map_h_ * 2.0 * kPi * kPi);

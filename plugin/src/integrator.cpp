@@ -219,11 +219,13 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     if (bounce >= settings_.russian_roulette_depth) {
       // Judged on the throughput without refraction's radiance scaling, as pbrt does, so that a
       // path inside glass is not ended more often only because its radiance is scaled down.
+      // Continued with Cycles' probability √(max throughput), capped at 1: a path that still
+      // carries its full throughput is never cut, so a white furnace stays noise-free.
       const float m = beta.max_component() * eta_scale;
-      if (m < 1.0f) {
-        const float q = std::max(0.05f, 1.0f - m);
-        if (rng.uniform() < q) break;
-        beta *= 1.0f / (1.0f - q);
+      const float p = std::min(std::sqrt(m), 1.0f);
+      if (p < 1.0f) {
+        if (!(rng.uniform() < p)) break;
+        beta *= 1.0f / p;
       }
     }
   }

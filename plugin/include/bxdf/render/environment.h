@@ -7,8 +7,10 @@
 // with `image` an equirectangular (latitude-longitude) picture looked up as Cycles'
 // Environment Texture node does (K/svm/image.h, K/camera/projection.h). A world with an image
 // is importance-sampled as Cycles does (K/light/background.h, scene/light.cpp): a map of
-// res_x × res_y cells of L at the cell centres, a piecewise-constant 2D distribution over it
-// with rows weighted by sin θ, combined with BSDF sampling by MIS. A constant world is not
+// res_x × res_y cells, a piecewise-constant 2D distribution over it with rows weighted by
+// sin θ, combined with BSDF sampling by MIS. (A cell's value is the largest L at nine points of
+// it rather than Cycles' centre value: the density then never falls far below L/∫L, which
+// keeps a small bright sun from turning into fireflies.) A constant world is not
 // light-sampled at all (Cycles turns background MIS off for a world that does not vary), so BSDF
 // sampling alone finds it, which is noise-free for a diffuse surface in a furnace.
 #pragma once

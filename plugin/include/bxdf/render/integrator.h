@@ -4,7 +4,8 @@
 // delta lights and delta lobes are counted by the one strategy that can find them. Lights are
 // not geometry: rays pass through them, collecting their radiance (as Cycles' lights_intersect).
 // A constant world is found by BSDF sampling alone (Cycles does not light-sample it). Shadow
-// rays leave from Cycles' terminator-offset point. Russian roulette from the fourth bounce on.
+// rays leave from Cycles' terminator-offset point. Russian roulette from the fourth bounce on,
+// continuing with Cycles' probability √(max throughput).
 #pragma once
 
 #include <cstdint>
