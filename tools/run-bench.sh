@@ -49,3 +49,9 @@ if [ -d "$BUILD/python" ]; then
   echo "== Python API (bench/python_bench.py)"
   PYTHONPATH="$BUILD/python" /usr/bin/python3 bench/python_bench.py
 fi
+if command -v blender >/dev/null && [ -d "$BUILD/python" ]; then
+  echo
+  echo "== HDRI scene: time to equal error against Cycles (bench/hdri_vs_cycles.py)"
+  PYTHONPATH="$BUILD/python" blender -b --factory-startup --python-exit-code 1 \
+    --python bench/hdri_vs_cycles.py 2>/dev/null | grep -v '^Fra:\|^Saved:\|^ Time:\|^Blender\|^Read\|^$'
+fi
