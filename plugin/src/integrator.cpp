@@ -86,7 +86,8 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
   }
 
   const float light_pdf = ls.pdf * select;
-  if (light && light->is_delta()) return f * ls.radiance / light_pdf;
+  // Lights BSDF rays cannot find (delta, or Multiple Importance off) are counted here in full.
+  if (light && (light->is_delta() || !light->visibility.use_mis)) return f * ls.radiance / light_pdf;
   const float bsdf_pdf = bsdf.pdf(wo, ls.wi);
   return f * ls.radiance * (power_heuristic(1.0f, light_pdf, 1.0f, bsdf_pdf) / light_pdf);
 }
@@ -110,7 +111,7 @@ RGB PathTracer::lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bo
   return L;
 }
 
-RGB PathTracer::escaped(const Vec3& dir, bool count_fully, float bsdf_pdf) const {
+RGB PathTracer::escaped(const Vec3& dir, bool camera_ray, bool count_fully, float bsdf_pdf) const {
   const Environment& world = scene_.world();
   RGB L(0.0f);
   if (!world.is_black()) {
@@ -124,9 +125,11 @@ RGB PathTracer::escaped(const Vec3& dir, bool count_fully, float bsdf_pdf) const
     }
   }
   for (uint32_t i : scene_.wide_suns()) {
+    const Light& sun = scene_.lights()[i];
+    if (camera_ray ? !sun.visibility.camera : !sun.visibility.use_mis) continue;
     RGB le;
     float pdf = 0.0f;
-    if (!sun_radiance(scene_.lights()[i], dir, &le, &pdf)) continue;
+    if (!sun_radiance(sun, dir, &le, &pdf)) continue;
     if (count_fully) {
       L += le;
     } else {
@@ -159,7 +162,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
       // Escaped: the world and the suns with an angle. Counted in full where light sampling
       // could not have found them (camera rays, delta bounces), else weighted against it.
       if (!(camera_ray && settings_.transparent_background))
-        L += beta * escaped(ray.dir, count_fully, prev_pdf);
+        L += beta * escaped(ray.dir, camera_ray, count_fully, prev_pdf);
       break;
     }
     if (bounce == 0) result.alpha = 1.0f;

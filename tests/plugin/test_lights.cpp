@@ -234,3 +234,16 @@ TEST(Lights, CastShadowOffLetsLightThroughOccluders) {
     EXPECT_NEAR(f.mean(), cast ? 0.0 : 0.8 / M_PI * 1.0, 0.01) << cast;
   }
 }
+
+TEST(Lights, WideSunIsSeenByTheCameraOnlyWhenVisible) {
+  for (bool visible : {false, true}) {
+    Floor f;
+    f.camera.camera_to_world = look_at(Vec3(0, 0, 1), Vec3(0, 0, 5), Vec3(0, 1, 0));  // looks up
+    Light sun = sun_light(Vec3(0, 0, -1), RGB(2.0f), radians(10.0f));
+    sun.visibility.camera = visible;
+    f.scene.add_light(sun);
+    // Straight into the sun's disk: radiance E·pdf = E / (π tan²(5°)) near its centre.
+    const double centre = 2.0 / (M_PI * std::pow(std::tan(radians(5.0f)), 2));
+    EXPECT_NEAR(f.mean(), visible ? centre : 0.0, 2e-3 * centre) << visible;
+  }
+}

@@ -53,8 +53,9 @@ class PathTracer {
   // against light sampling unless `count_fully` (camera rays, delta bounces).
   RGB lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bool count_fully,
                        float bsdf_pdf) const;
-  // Radiance an escaped ray receives from the world and the suns with an angle.
-  RGB escaped(const Vec3& dir, bool count_fully, float bsdf_pdf) const;
+  // Radiance an escaped ray receives from the world and the suns with an angle (camera rays
+  // see a sun only when it is visible to the camera).
+  RGB escaped(const Vec3& dir, bool camera_ray, bool count_fully, float bsdf_pdf) const;
 
   const Scene& scene_;
   IntegratorSettings settings_;
