@@ -58,3 +58,9 @@ for scene in ${SIDE_BY_SIDE_SCENES:-cornell}; do
     --reference-spp 1024 --repeats 3 --json "$BUILD/bench/side_by_side_$scene.json" 2>&1 \
     | grep -E '^(side_by_side|  *spp| +[0-9]+ )' || { echo "run-bench: side_by_side failed on $scene" >&2; exit 1; }
 done
+if command -v blender >/dev/null && [ -d "$BUILD/python" ]; then
+  echo
+  echo "== HDRI scene: time to equal error against Cycles (bench/hdri_vs_cycles.py)"
+  PYTHONPATH="$BUILD/python" blender -b --factory-startup --python-exit-code 1 \
+    --python bench/hdri_vs_cycles.py 2>/dev/null | grep -v '^Fra:\|^Saved:\|^ Time:\|^Blender\|^Read\|^$'
+fi

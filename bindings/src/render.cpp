@@ -200,19 +200,25 @@ for the partial images too.
 - ``"meshes"``: list of ``{"positions": (V, 3) float, "triangles": (T, 3) int,
   "normals": (N, 3) float + "normal_indices": (T, 3) int (or both None: flat shading),
   "uvs": (U, 2) float + "uv_indices": (T, 3) int (or both None),
-  "material_indices": (T,) int into "materials", -1 = none (a grey Lambertian, reflectance 0.8)}``.
+  "material_indices": (T,) int into "materials", -1 = none (a grey Lambertian, reflectance 0.8),
+  optional "visible_camera", "visible_shadow" (bools, default True) and "terminator_offset":
+  (geometry, shading) Cycles' shadow terminator offsets (default (0.1, 0))}``.
   Counter-clockwise triangles face front. Normals and UVs are indexed separately from positions;
   vertices are split only where a corner's (position, normal, uv) triple differs.
 - ``"instance_mesh"``: (I,) int into "meshes" and ``"instance_matrix"``: (I, 4, 4) object→world
   (affine). Each instance is flattened into world space (normals by the inverse transpose; a
   mirroring matrix keeps the front). Without these two keys every mesh is drawn once, as is.
 - ``"lights"``: list of dicts by ``"type"``: ``"point"``: position, intensity (RGB W/sr), radius
-  (rendered as 0, with a warning); ``"spot"``: as point plus direction, spot_size (full angle, rad),
-  spot_blend; ``"sun"``: direction (the way light travels), irradiance (RGB W/m²), angle (rad);
-  ``"area"``: shape ("square"|"rectangle"|"disk"|"ellipse"), size ((x, y) m), matrix (light→world;
-  it faces −Z), radiance (RGB W/(m² sr)); an area light becomes an emissive mesh, which emits from
-  both sides (a warning says so).
-- ``"world"``: ``{"color": RGB radiance}``. Other keys (``"warnings"``, names, ...) are ignored.
+  (m: a disk facing the shading point, as Cycles); ``"spot"``: as point plus direction, spot_size
+  (full angle, rad), spot_blend; ``"sun"``: direction (the way light travels), irradiance (RGB
+  W/m²), angle (rad); ``"area"``: shape ("square"|"rectangle"|"disk"|"ellipse"), size ((x, y) m),
+  matrix (light→world; it emits along −Z, one-sided), power (W), color (radiance
+  power·color/(4·area), as Cycles). Each may have "visible_camera" (default False),
+  "cast_shadow" and "use_mis" (default True).
+- ``"world"``: ``{"color": RGB radiance, "texture": {"path": equirectangular image, "weight": RGB,
+  "matrix": (3, 4) texture vector of a direction (Mapping), "interpolation": "linear"|"closest"},
+  "sampling": "auto"|"manual"|"none", "map_resolution": int (0 = the image's size)}``: radiance
+  color + weight·image(matrix·ω). Other keys (``"warnings"``, names, ...) are ignored.
 
 ``settings`` (dict or None; unknown keys are refused): ``samples`` (16) per pixel, ``max_bounces``
 (8; 0 = direct light only), ``pixel_filter`` ("box", "gaussian" or "pixel_center", any case;

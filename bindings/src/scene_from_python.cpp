@@ -11,6 +11,7 @@
 
 #include "bxdf/params.h"
 #include "bxdf/render/filter.h"
+#include "bxdf/render/environment.h"
 #include "bxdf/render/lights.h"
 #include "graph_from_python.h"
 #include "mesh_welding.h"
@@ -230,45 +231,27 @@ Material material_from_python(py::handle v, const std::string& path, render::Tex
   return material;
 }
 
-Light light_from_python(py::handle v, const std::string& path, std::vector<std::string>& warnings) {
-  const py::dict d = as_dict(v, path);
-  const std::string type = lower(text(required(d, "type", path, "'point', 'spot', 'sun' or 'area'"),
-                                      key_path(path, "type"), "'point', 'spot', 'sun' or 'area'"));
-  const std::string name = has(d, "name") ? py::str(d["name"]).cast<std::string>() : path;
-  if (type == "point" || type == "spot") {
-    const Vec3 position = vec3(required(d, "position", path, "(x, y, z)"), key_path(path, "position"));
-    const RGB intensity = colour(required(d, "intensity", path, "an RGB radiant intensity in W/sr"),
-                                 key_path(path, "intensity"));
-    if (has(d, "radius") && number(d["radius"], key_path(path, "radius"), 0.0, kInf, "[0, inf)") > 0.0)
-      warnings.push_back("light '" + name + "': radius " + py::str(d["radius"]).cast<std::string>() +
-                         " rendered as 0 (the renderer's point and spot lights are points: hard shadows)");
-    if (type == "point") return with_path(path, [&] { return render::point_light(position, intensity); });
-    const Vec3 direction = vec3(required(d, "direction", path, "the spot axis (x, y, z)"), key_path(path, "direction"));
-    const double size = number(required(d, "spot_size", path, "the full cone angle in radians, (0, pi]"),
-                               key_path(path, "spot_size"), 1e-9, M_PI, "(0, pi] radians");
-    const double blend =
-        number(required(d, "spot_blend", path, "a number in [0, 1]"), key_path(path, "spot_blend"), 0.0, 1.0, "[0, 1]");
-    return with_path(path, [&] {
-      return render::spot_light(position, direction, intensity, static_cast<float>(size), static_cast<float>(blend));
-    });
-  }
-  if (type == "sun") {
-    const Vec3 direction = vec3(required(d, "direction", path, "the direction light travels (x, y, z)"),
-                                key_path(path, "direction"));
-    const RGB irradiance = colour(required(d, "irradiance", path, "an RGB irradiance in W/m^2"),
-                                  key_path(path, "irradiance"));
-    const double angle = has(d, "angle") ? number(d["angle"], key_path(path, "angle"), 0.0, M_PI / 2 - 1e-6,
-                                                  "[0, pi/2) radians")
-                                         : 0.0;
-    return with_path(path, [&] { return render::sun_light(direction, irradiance, static_cast<float>(angle)); });
-  }
-  refuse(key_path(path, "type"), "unknown light type '" + type + "'; expected 'point', 'spot', 'sun' or 'area'");
+bool flag(const py::dict& d, const char* key, bool fallback, const std::string& path) {
+  if (!has(d, key)) return fallback;
+  const py::object v = d[key];
+  if (!PyBool_Check(v.ptr()) && !py::isinstance<py::int_>(v))
+    refuse(key_path(path, key), short_repr(v) + " is not a bool; expected True or False");
+  return v.cast<bool>();
 }
 
-// Blender's area light as an emissive mesh in its local XY plane (it faces local -Z), moved by its
-// matrix. Disks and ellipses are 64-gons with the radius scaled so that the area, and with it the
-// power, stays that of the true ellipse.
-Mesh area_light_mesh(const py::dict& d, const std::string& path, uint32_t material) {
+// Ray visibility keys of a light dict (Blender: object visible_camera, light cast_shadow and
+// Cycles' Multiple Importance).
+render::LightVisibility light_visibility(const py::dict& d, const std::string& path) {
+  render::LightVisibility vis;
+  vis.camera = flag(d, "visible_camera", vis.camera, path);
+  vis.cast_shadow = flag(d, "cast_shadow", vis.cast_shadow, path);
+  vis.use_mis = flag(d, "use_mis", vis.use_mis, path);
+  return vis;
+}
+
+// Blender's area light: a rectangle or ellipse in its local XY plane, size (x, y) scaled by the
+// matrix, emitting along the light's −Z from the front only.
+Light area_light_from_python(const py::dict& d, const std::string& path) {
   const std::string shape = lower(text(required(d, "shape", path, "'square', 'rectangle', 'disk' or 'ellipse'"),
                                        key_path(path, "shape"), "'square', 'rectangle', 'disk' or 'ellipse'"));
   const bool round = shape == "disk" || shape == "ellipse";
@@ -286,35 +269,100 @@ Mesh area_light_mesh(const py::dict& d, const std::string& path, uint32_t materi
     sy = s[1];
   }
   const auto m = matrix4(required(d, "matrix", path, "the light's 4x4 object-to-world matrix"), key_path(path, "matrix"), true);
+  const Vec3 centre = transform_point(m, 0.0, 0.0, 0.0);
+  const Vec3 axis_u = transform_point(m, sx, 0.0, 0.0) - centre;
+  const Vec3 axis_v = transform_point(m, 0.0, sy, 0.0) - centre;
+  const Vec3 normal = centre - transform_point(m, 0.0, 0.0, 1.0);  // −Z
+  const double power = number(required(d, "power", path, "the light's power in W"), key_path(path, "power"), 0.0, kInf, "[0, inf) W");
+  const RGB color = colour(required(d, "color", path, "an RGB colour"), key_path(path, "color"));
+  return with_path(path, [&] {
+    return render::area_light_from_power(centre, axis_u, axis_v, normal,
+                                         round ? render::AreaShape::Ellipse : render::AreaShape::Rectangle,
+                                         static_cast<float>(power), color);
+  });
+}
 
-  Mesh mesh;
-  mesh.material = material;
-  auto add_vertex = [&](double x, double y) {
-    const Vec3 p = transform_point(m, x, y, 0.0);
-    mesh.positions.insert(mesh.positions.end(), {p.x, p.y, p.z});
-  };
-  // Counter-clockwise seen from -Z (the side that emits): clockwise in the XY plane.
-  if (!round) {
-    add_vertex(-sx / 2, -sy / 2);
-    add_vertex(-sx / 2, sy / 2);
-    add_vertex(sx / 2, sy / 2);
-    add_vertex(sx / 2, -sy / 2);
-    mesh.indices = {0, 1, 2, 0, 2, 3};
-  } else {
-    constexpr int kSides = 64;
-    const double polygon_to_circle = std::sqrt(M_PI / (kSides / 2.0 * std::sin(2.0 * M_PI / kSides)));
-    add_vertex(0.0, 0.0);
-    for (int i = 0; i < kSides; ++i) {
-      const double phi = -2.0 * M_PI * i / kSides;
-      add_vertex(polygon_to_circle * sx / 2 * std::cos(phi), polygon_to_circle * sy / 2 * std::sin(phi));
+Light light_from_python(py::handle v, const std::string& path) {
+  const py::dict d = as_dict(v, path);
+  const std::string type = lower(text(required(d, "type", path, "'point', 'spot', 'sun' or 'area'"),
+                                      key_path(path, "type"), "'point', 'spot', 'sun' or 'area'"));
+  Light light = [&]() -> Light {
+    if (type == "area") return area_light_from_python(d, path);
+    if (type == "point" || type == "spot") {
+      const Vec3 position = vec3(required(d, "position", path, "(x, y, z)"), key_path(path, "position"));
+      const RGB intensity = colour(required(d, "intensity", path, "an RGB radiant intensity in W/sr"),
+                                   key_path(path, "intensity"));
+      const float radius =
+          has(d, "radius") ? static_cast<float>(number(d["radius"], key_path(path, "radius"), 0.0, kInf, "[0, inf) m")) : 0.0f;
+      if (type == "point") return with_path(path, [&] { return render::point_light(position, intensity, radius); });
+      const Vec3 direction = vec3(required(d, "direction", path, "the spot axis (x, y, z)"), key_path(path, "direction"));
+      const double size = number(required(d, "spot_size", path, "the full cone angle in radians, (0, pi]"),
+                                 key_path(path, "spot_size"), 1e-9, M_PI, "(0, pi] radians");
+      const double blend =
+          number(required(d, "spot_blend", path, "a number in [0, 1]"), key_path(path, "spot_blend"), 0.0, 1.0, "[0, 1]");
+      return with_path(path, [&] {
+        return render::spot_light(position, direction, intensity, static_cast<float>(size), static_cast<float>(blend), radius);
+      });
     }
-    for (uint32_t i = 0; i < kSides; ++i) mesh.indices.insert(mesh.indices.end(), {0, 1 + i, 1 + (i + 1) % kSides});
+    if (type == "sun") {
+      const Vec3 direction = vec3(required(d, "direction", path, "the direction light travels (x, y, z)"),
+                                  key_path(path, "direction"));
+      const RGB irradiance = colour(required(d, "irradiance", path, "an RGB irradiance in W/m^2"),
+                                    key_path(path, "irradiance"));
+      const double angle = has(d, "angle") ? number(d["angle"], key_path(path, "angle"), 0.0, M_PI * 0.999,
+                                                    "[0, pi) radians")
+                                           : 0.0;
+      return with_path(path, [&] { return render::sun_light(direction, irradiance, static_cast<float>(angle)); });
+    }
+    refuse(key_path(path, "type"), "unknown light type '" + type + "'; expected 'point', 'spot', 'sun' or 'area'");
+  }();
+  light.visibility = light_visibility(d, path);
+  return light;
+}
+
+// scene['world']: {"color": RGB, "texture": {"path", "weight" (RGB), "matrix" (3x4 texture
+// vector of a direction), "interpolation"}, "sampling": "auto"|"manual"|"none",
+// "map_resolution": int} (render/environment.h).
+render::EnvironmentSettings world_from_python(const py::dict& w, const std::string& path) {
+  render::EnvironmentSettings s;
+  if (has(w, "color")) s.constant = colour(w["color"], key_path(path, "color"));
+  if (has(w, "texture")) {
+    const std::string tp = key_path(path, "texture");
+    const py::dict t = as_dict(w["texture"], tp);
+    const std::string file = text(required(t, "path", tp, "an image path"), key_path(tp, "path"), "an image path");
+    s.weight = has(t, "weight") ? colour(t["weight"], key_path(tp, "weight")) : RGB(1.0f);
+    if (has(t, "matrix")) {
+      const auto m = real_array<Float64Array>(t["matrix"], key_path(tp, "matrix"), {3, 4}, false);
+      for (int i = 0; i < 12; ++i) {
+        if (!std::isfinite(m.data()[i])) refuse(key_path(tp, "matrix"), "has " + num(m.data()[i]) + "; expected finite numbers");
+        s.matrix[i] = static_cast<float>(m.data()[i]);
+      }
+    }
+    if (has(t, "interpolation")) {
+      const std::string mode = lower(text(t["interpolation"], key_path(tp, "interpolation"), "'closest' or 'linear'"));
+      if (mode == "closest") s.interpolation = render::TextureInterpolation::Closest;
+      else if (mode != "linear") refuse(key_path(tp, "interpolation"), "'" + mode + "' is unknown; expected 'closest' or 'linear'");
+    }
+    try {
+      s.image = render::load_equirect_image(file);
+    } catch (const std::exception& e) {
+      refuse(key_path(tp, "path"), e.what());
+    }
   }
-  return mesh;
+  if (has(w, "sampling")) {
+    const std::string mode = lower(text(w["sampling"], key_path(path, "sampling"), "'auto', 'manual' or 'none'"));
+    if (mode == "none") s.importance_sample = false;
+    else if (mode != "auto" && mode != "manual") refuse(key_path(path, "sampling"), "'" + mode + "' is unknown; expected 'auto', 'manual' or 'none'");
+  }
+  if (has(w, "map_resolution"))
+    s.map_resolution = static_cast<int>(integer(w["map_resolution"], key_path(path, "map_resolution"), 0, 65536));
+  return s;
 }
 
 // One mesh of scene['meshes'], validated, with its arrays kept alive for weld_corners.
 struct MeshInput {
+  render::MeshVisibility visibility;
+  render::TerminatorOffsets terminator;
   Float32Array positions, normals, uvs;
   IndexArray triangles, normal_indices, uv_indices;
   std::vector<uint32_t> materials;
@@ -326,6 +374,17 @@ MeshInput mesh_from_python(py::handle v, const std::string& path, size_t num_mat
                            const std::function<uint32_t()>& default_material) {
   const py::dict d = as_dict(v, path);
   MeshInput in;
+  // The object's ray visibility and Cycles' shadow terminator offsets (geometry, shading).
+  in.visibility.camera = flag(d, "visible_camera", true, path);
+  in.visibility.shadow = flag(d, "visible_shadow", true, path);
+  if (has(d, "terminator_offset")) {
+    const auto t = numbers(d["terminator_offset"], key_path(path, "terminator_offset"), 2);
+    if (!(t[0] >= 0.0 && t[0] <= 1.0 && t[1] >= 0.0 && t[1] < 1.0))
+      refuse(key_path(path, "terminator_offset"), "(" + num(t[0]) + ", " + num(t[1]) +
+                                                     ") is out of range; expected (geometry in [0, 1], shading in [0, 1))");
+    in.terminator.geometry = static_cast<float>(t[0]);
+    in.terminator.shading = static_cast<float>(t[1]);
+  }
   in.positions = real_array<Float32Array>(required(d, "positions", path, "a (V, 3) float array"),
                                           key_path(path, "positions"), {-1, 3}, false);
   require_finite(in.positions.data(), static_cast<size_t>(in.positions.size()), 3, key_path(path, "positions"));
@@ -500,29 +559,14 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
   if (has(d, "world")) {
     const std::string path = key_path(root, "world");
     const py::dict w = as_dict(d["world"], path);
-    if (has(w, "color")) scene.set_world(colour(w["color"], key_path(path, "color")));
+    render::EnvironmentSettings world = world_from_python(w, path);
+    with_path(path, [&] { scene.set_world(std::move(world)); return 0; });
   }
 
-  std::vector<Mesh> light_meshes;
   if (has(d, "lights")) {
     const std::string path = key_path(root, "lights");
     const py::list lights = as_list(d["lights"], path, "a list of light dicts");
-    for (size_t i = 0; i < lights.size(); ++i) {
-      const std::string p = item_path(path, i);
-      const py::dict l = as_dict(lights[i], p);
-      if (l.contains("type") && py::isinstance<py::str>(l["type"]) && lower(l["type"].cast<std::string>()) == "area") {
-        const RGB radiance = colour(required(l, "radiance", p, "an RGB radiance in W/(m^2 sr)"), key_path(p, "radiance"));
-        Mesh mesh = area_light_mesh(l, p, 0);
-        if (radiance.r == 0.0f && radiance.g == 0.0f && radiance.b == 0.0f) continue;  // emits nothing
-        mesh.material = scene.add_material(Material{{}, radiance});
-        light_meshes.push_back(std::move(mesh));
-        out.warnings.push_back("light '" + (has(l, "name") ? py::str(l["name"]).cast<std::string>() : p) +
-                               "': area lights are emissive meshes, which emit from both sides "
-                               "(Blender's emit from the front only)");
-        continue;
-      }
-      scene.add_light(light_from_python(l, p, out.warnings));
-    }
+    for (size_t i = 0; i < lights.size(); ++i) scene.add_light(light_from_python(lights[i], item_path(path, i)));
   }
 
   // The heavy part (welding, transforming, copying, the BVH) needs no Python.
@@ -534,10 +578,13 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
         welded[i] = weld_corners(meshes[i].arrays);
         apply_graph_attributes(meshes[i].graph_attributes, welded[i]);
       }
-    auto add = [&](const Mesh& mesh, const std::string& what) {
+    auto add = [&](const Mesh& mesh, const MeshInput& in, const std::string& what) {
       if (mesh.num_triangles() == 0) return;
       try {
-        scene.add_mesh(mesh.view());
+        render::MeshView view = mesh.view();
+        view.visibility = in.visibility;
+        view.terminator = in.terminator;
+        scene.add_mesh(view);
       } catch (const std::invalid_argument& e) {
         refuse(what, e.what());
       }
@@ -545,11 +592,10 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
     if (instanced) {
       for (size_t i = 0; i < instance_mesh.size(); ++i)
         add(transformed(welded[static_cast<size_t>(instance_mesh[i])], instance_matrix[i]),
-            item_path(key_path(root, "instance_mesh"), i));
+            meshes[static_cast<size_t>(instance_mesh[i])], item_path(key_path(root, "instance_mesh"), i));
     } else {
-      for (size_t i = 0; i < welded.size(); ++i) add(welded[i], item_path(key_path(root, "meshes"), i));
+      for (size_t i = 0; i < welded.size(); ++i) add(welded[i], meshes[i], item_path(key_path(root, "meshes"), i));
     }
-    for (const Mesh& m : light_meshes) add(m, key_path(root, "lights"));
     const auto converted = std::chrono::steady_clock::now();
     scene.commit();
     out.convert_seconds = std::chrono::duration<double>(converted - started).count();

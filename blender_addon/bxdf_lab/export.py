@@ -18,23 +18,24 @@ so it can be tested, pickled, or handed to the renderer's binding unchanged.
       "materials": [{"name", "model", "params", "flags"}],  # bxdf.make(model, **params); a
                   # material rendered from its node tree: {"name", "graph"} (node_materials.py)
       "lights": [{"type", "name", "matrix", "position", "direction", "color", "power", ...}],
-      "camera": {...}, "world": {"color": (3,) float32}, "resolution": (width, height),
-      "warnings": [str],  # things exported approximately (e.g. a textured world)
+                  # light_export.py
+      "camera": {...}, "world": {"color", "texture", ...}  # world_export.py
+      "resolution": (width, height), "film_transparent": bool,
+      "warnings": [str],  # things exported approximately, each naming the world/light/material
     }
+
+Each mesh also carries its object's "visible_camera", "visible_shadow" and "terminator_offset"
+(Cycles' geometry and shading offsets).
 
 Mesh attributes are indexed separately from positions (as in OBJ), so that a flat face or a UV
 seam needs no duplicated vertices and a smooth mesh shares one normal per vertex.
 
-Light units follow Blender: a point or spot light of power P watts has radiant intensity
-I = P·color/(4π) W/sr (Cycles' convention, reference/renderers.md); a sun gives irradiance
-`strength` W/m²; an area light of power P emits radiance P·color/(π·area) from one side.
+Lights and their units: light_export.py. The world: world_export.py.
 """
-
-import math
 
 import numpy as np
 
-from . import api, material_source, node_materials
+from . import api, light_export, material_source, node_materials, world_export
 
 GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
 
@@ -179,40 +180,13 @@ def _object_mesh(obj, materials):
     else:
         data["material_indices"] = np.full_like(data["material_indices"], -1)
     data["name"] = obj.name
+    # Object ray visibility and Cycles' shadow terminator offsets (geometry, shading).
+    data["visible_camera"] = bool(obj.visible_camera)
+    data["visible_shadow"] = bool(obj.visible_shadow)
+    cycles = getattr(obj, "cycles", None)
+    data["terminator_offset"] = (float(getattr(cycles, "shadow_terminator_geometry_offset", 0.1)),
+                                 min(float(getattr(cycles, "shadow_terminator_offset", 0.0)), 0.999))
     return data
-
-
-def light_dict(obj, matrix):
-    """One light in Blender's units, plus the derived radiometric quantity the renderer uses."""
-    light = obj.data
-    m = _matrix(matrix)
-    color = np.array(light.color, dtype=np.float32)
-    out = {
-        "type": light.type.lower(),  # point, spot, sun, area
-        "name": obj.name,
-        "matrix": m,
-        "position": m[:3, 3].copy(),
-        "direction": -m[:3, 2] / max(np.linalg.norm(m[:3, 2]), 1e-30),  # lights shine along -Z
-        "color": color,
-        "power": float(light.energy),  # W (sun: W/m²)
-    }
-    if light.type in ("POINT", "SPOT"):
-        out["radius"] = float(light.shadow_soft_size)
-        out["intensity"] = color * float(light.energy) / (4.0 * math.pi)  # W/sr
-    if light.type == "SPOT":
-        out["spot_size"] = float(light.spot_size)  # full cone angle, radians
-        out["spot_blend"] = float(light.spot_blend)
-    if light.type == "SUN":
-        out["angle"] = float(light.angle)
-        out["irradiance"] = color * float(light.energy)  # W/m²
-    if light.type == "AREA":
-        size_x = float(light.size)
-        size_y = float(light.size_y) if light.shape in ("RECTANGLE", "ELLIPSE") else size_x
-        area = size_x * size_y * (math.pi / 4 if light.shape in ("DISK", "ELLIPSE") else 1.0)
-        scale = np.linalg.norm(m[:3, 0]) * np.linalg.norm(m[:3, 1])
-        out.update(shape=light.shape.lower(), size=(size_x, size_y), area=area * scale,
-                   radiance=color * float(light.energy) / (math.pi * max(area * scale, 1e-30)))
-    return out
 
 
 def resolution(scene):
@@ -250,26 +224,6 @@ def camera_dict(scene, camera_obj):
     return out
 
 
-def world_dict(world, warnings):
-    """The world as a constant colour (the renderer's world model)."""
-    if world is None:
-        return {"color": np.zeros(3, dtype=np.float32)}
-    if world.use_nodes and world.node_tree is not None:
-        output = next((n for n in world.node_tree.nodes
-                       if n.type == "OUTPUT_WORLD" and n.is_active_output), None)
-        link = output.inputs["Surface"].links[0] if output and output.inputs["Surface"].links else None
-        background = link.from_node if link else None
-        if background is None:
-            return {"color": np.zeros(3, dtype=np.float32)}
-        if background.type != "BACKGROUND" or background.inputs["Color"].is_linked:
-            warnings.append(f"world '{world.name}': only a constant Background colour is exported; "
-                            "its node set-up was replaced by the world colour")
-            return {"color": np.array(world.color, dtype=np.float32)}
-        color = np.array(background.inputs["Color"].default_value[:3], dtype=np.float32)
-        return {"color": color * float(background.inputs["Strength"].default_value)}
-    return {"color": np.array(world.color, dtype=np.float32)}
-
-
 def export_scene(depsgraph):
     """The evaluated scene as plain data (see the module docstring). ValueError names a material
     whose stored parameters the registry refuses."""
@@ -283,7 +237,7 @@ def export_scene(depsgraph):
         if not inst.is_instance and not inst.show_self:
             continue
         if obj.type == "LIGHT":
-            lights.append(light_dict(obj, inst.matrix_world))
+            lights.append(light_export.light_dict(obj, inst.matrix_world, warnings))
             continue
         if obj.type not in GEOMETRY_TYPES:
             continue
@@ -307,7 +261,8 @@ def export_scene(depsgraph):
         "materials": materials.entries,
         "lights": lights,
         "camera": camera_dict(scene, scene.camera.evaluated_get(depsgraph) if scene.camera else None),
-        "world": world_dict(scene.world, warnings),
+        "world": world_export.world_dict(scene.world, warnings),
+        "film_transparent": bool(scene.render.film_transparent),
         "resolution": resolution(scene),
         "warnings": warnings,
     }

@@ -36,5 +36,7 @@ def render(scene_data, render_settings, on_progress):
     """Renders `scene_data`; returns ((height, width, 4) float32 image with rows bottom-up, stats
     dict with "cancelled", "warnings", "seconds", ...)."""
     render_fn = binding()
-    return render_fn(scene_data, settings_dict(render_settings), on_progress, bottom_up=True,
-                     return_stats=True)
+    settings = settings_dict(render_settings)
+    # Film › Transparent, as Cycles: camera rays that miss get no world and alpha 0.
+    settings["transparent_background"] = bool(scene_data.get("film_transparent", False))
+    return render_fn(scene_data, settings, on_progress, bottom_up=True, return_stats=True)

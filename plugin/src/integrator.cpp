@@ -41,42 +41,109 @@ PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
                          " must be in [0, inf)");
   if (settings.russian_roulette_depth < 0)
     throw ParameterError("russian_roulette_depth must be in [0, inf)");
-  const auto& lights = scene.lights();
-  light_select_pdf_ = lights.empty() ? 0.0f : 1.0f / static_cast<float>(lights.size());
-  for (size_t i = 0; i < lights.size(); ++i) {
-    const Light& l = lights[i];
-    if (l.type == LightType::World || (l.type == LightType::Sun && l.cos_sun_max < 1.0f))
-      environment_lights_.push_back(static_cast<int>(i));
-  }
 }
 
-RGB PathTracer::sample_one_light(const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
-                                 PCG32& rng, PathStats& stats) const {
+RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf,
+                                 const Vec3& wo, PCG32& rng, PathStats& stats) const {
+  const LightSampler& sampler = scene_.light_sampler();
+  if (sampler.empty()) return RGB(0.0f);
   const auto& lights = scene_.lights();
-  if (lights.empty()) return RGB(0.0f);
-  const size_t n = lights.size();
-  const size_t index = std::min(static_cast<size_t>(rng.uniform() * static_cast<float>(n)), n - 1);
-  const Light& light = lights[index];
+  float select = 0.0f;
+  const size_t index = sampler.sample(rng.uniform(), &select);
   const float u1 = rng.uniform(), u2 = rng.uniform();
-  const LightSample ls = sample_light(light, sp.p, Point2(u1, u2));
-  if (!(ls.pdf > 0.0f) || ls.radiance.is_black()) return RGB(0.0f);
-  const RGB f = bsdf.f_cos(wo, ls.wi);
-  if (f.is_black()) return RGB(0.0f);
-
-  const Vec3 origin = offset_origin(sp.p, sp.ng, ls.wi);
-  float tmax = kInfinity;
-  if (std::isfinite(ls.distance)) {
-    // Stop short of the light's own surface (area lights) by a little more than the offset.
-    const float eps = offset_scale(sp.p);
-    tmax = std::max(0.0f, ls.distance * (1.0f - 1e-4f) - 2.0f * eps);
+  LightSample ls;
+  const Light* light = index < lights.size() ? &lights[index] : nullptr;
+  if (light) {
+    ls = sample_light(*light, sp.p, Point2(u1, u2));
+  } else {
+    ls.wi = scene_.world().sample(Point2(u1, u2), &ls.pdf);
+    ls.distance = kInfinity;
+    if (ls.pdf > 0.0f) ls.radiance = scene_.world().eval(ls.wi);
   }
-  ++stats.shadow_rays;
-  if (scene_.occluded(origin, ls.wi, tmax)) return RGB(0.0f);
+  if (!(ls.pdf > 0.0f) || ls.radiance.is_black()) return RGB(0.0f);
+  const float cos_in = dot(ls.wi, sp.ns);
+  RGB f = bsdf.f_cos(wo, ls.wi);  // each closure's cosine against its own (mapped) normal
+  if (f.is_black()) return RGB(0.0f);
+  const TerminatorOffsets& terminator = scene_.terminator(hit.mesh);
+  f *= shading_offset_factor(cos_in, terminator.shading);
 
-  const float light_pdf = ls.pdf * light_select_pdf_;
-  if (light.is_delta()) return f * ls.radiance / light_pdf;
+  if (!light || light->visibility.cast_shadow) {
+    Vec3 p = sp.p;
+    SmoothTriangle tri;
+    if (terminator.geometry > 0.0f && scene_.smooth_triangle(hit, &tri)) {
+      bool lifted = false;
+      p = terminator_shadow_origin(tri, hit.b1, hit.b2, sp.p, sp.ns, sp.ng, ls.wi,
+                                   terminator.geometry, &lifted);
+    }
+    const Vec3 origin = offset_origin(p, sp.ng, ls.wi);
+    Vec3 dir = ls.wi;
+    float tmax = kInfinity;
+    if (std::isfinite(ls.distance)) {
+      // Aim from the (possibly lifted) origin at the light point, stopping short of the light's
+      // own surface (mesh lights) by a little more than the offset.
+      const Vec3 d = sp.p + ls.wi * ls.distance - origin;
+      const float dist = length(d);
+      if (!(dist > 0.0f)) return RGB(0.0f);
+      dir = d / dist;
+      tmax = std::max(0.0f, dist * (1.0f - 1e-4f) - 2.0f * offset_scale(sp.p));
+    }
+    ++stats.shadow_rays;
+    if (scene_.occluded(origin, dir, tmax)) return RGB(0.0f);
+  }
+
+  const float light_pdf = ls.pdf * select;
+  // Lights BSDF rays cannot find (delta, or Multiple Importance off) are counted here in full.
+  if (light && (light->is_delta() || !light->visibility.use_mis)) return f * ls.radiance / light_pdf;
   const float bsdf_pdf = bsdf.pdf(wo, ls.wi);
   return f * ls.radiance * (power_heuristic(1.0f, light_pdf, 1.0f, bsdf_pdf) / light_pdf);
+}
+
+RGB PathTracer::lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bool count_fully,
+                                 float bsdf_pdf) const {
+  RGB L(0.0f);
+  const auto& lights = scene_.lights();
+  for (uint32_t i : scene_.hittable_lights()) {
+    const Light& light = lights[i];
+    if (camera_ray ? !light.visibility.camera : !light.visibility.use_mis) continue;
+    LightHit h;
+    if (!intersect_light(light, ray.origin, ray.dir, tmax, &h)) continue;
+    if (count_fully) {
+      L += h.radiance;
+    } else {
+      const float light_pdf = h.pdf * scene_.light_sampler().probability(i);
+      L += h.radiance * power_heuristic(1.0f, bsdf_pdf, 1.0f, light_pdf);
+    }
+  }
+  return L;
+}
+
+RGB PathTracer::escaped(const Vec3& dir, bool camera_ray, bool count_fully, float bsdf_pdf) const {
+  const Environment& world = scene_.world();
+  RGB L(0.0f);
+  if (!world.is_black()) {
+    const RGB le = world.eval(dir);
+    if (count_fully || !world.importance_sampled()) {
+      L += le;
+    } else {
+      const float light_pdf =
+          world.pdf(dir) * scene_.light_sampler().probability(scene_.lights().size());
+      L += le * power_heuristic(1.0f, bsdf_pdf, 1.0f, light_pdf);
+    }
+  }
+  for (uint32_t i : scene_.wide_suns()) {
+    const Light& sun = scene_.lights()[i];
+    if (camera_ray ? !sun.visibility.camera : !sun.visibility.use_mis) continue;
+    RGB le;
+    float pdf = 0.0f;
+    if (!sun_radiance(sun, dir, &le, &pdf)) continue;
+    if (count_fully) {
+      L += le;
+    } else {
+      const float light_pdf = pdf * scene_.light_sampler().probability(i);
+      L += le * power_heuristic(1.0f, bsdf_pdf, 1.0f, light_pdf);
+    }
+  }
+  return L;
 }
 
 PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats) const {
@@ -94,19 +161,16 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
   for (int bounce = 0;; ++bounce) {
     Hit hit;
     ++stats.rays;
-    if (!scene_.intersect(ray, &hit)) {
-      // Escaped: the world and any sun with a cone. Counted in full where light sampling could
-      // not have found them (camera rays, delta bounces), else weighted against light sampling.
-      for (int li : environment_lights_) {
-        const RGB le = environment_radiance(lights[size_t(li)], ray.dir);
-        if (le.is_black()) continue;
-        if (bounce == 0 || specular_bounce) {
-          L += beta * le;
-        } else {
-          const float lp = light_select_pdf_ * environment_pdf(lights[size_t(li)], ray.dir);
-          L += beta * le * power_heuristic(1.0f, prev_pdf, 1.0f, lp);
-        }
-      }
+    const bool camera_ray = bounce == 0;
+    const bool count_fully = camera_ray || specular_bounce;
+    const bool found = scene_.intersect(ray, &hit, camera_ray);
+    L += beta * lights_along_ray(ray, found ? hit.t : kInfinity, camera_ray, count_fully,
+                                 prev_pdf);
+    if (!found) {
+      // Escaped: the world and the suns with an angle. Counted in full where light sampling
+      // could not have found them (camera rays, delta bounces), else weighted against it.
+      if (!(camera_ray && settings_.transparent_background))
+        L += beta * escaped(ray.dir, camera_ray, count_fully, prev_pdf);
       break;
     }
     if (bounce == 0) result.alpha = 1.0f;
@@ -123,7 +187,10 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
       sp.ng = -sp.ng;
       sp.ns = -sp.ns;
     }
-    BSDF bsdf(Frame::from_normal_tangent(sp.ns, sp.tangent), sp.ng);
+    // Reflection is judged against the shading normal, as Cycles' closures do: directions
+    // between the flat triangle and the smooth surface are lit (the terminator offset then lets
+    // their shadow rays out). Transmissive surfaces keep the geometric decision.
+    BSDF bsdf(Frame::from_normal_tangent(sp.ns, sp.tangent), transmissive ? sp.ng : sp.ns);
     RGB emitted = mat.emission;
     if (mat.graph) {
       // A node material: run its program at this point, then build its closures in place
@@ -143,26 +210,27 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     }
 
     if (!emitted.is_black()) {
-      if (bounce == 0 || specular_bounce) {
+      if (count_fully) {
         L += beta * emitted;
       } else {
         // Textured emission is found by BSDF sampling alone (it is not an area light).
         const bool textured = mat.graph && !mat.graph->emission_is_constant();
         const int li = textured ? -1 : scene_.area_light_of_mesh(hit.mesh);
-        const float lp =
-            li < 0 ? 0.0f
-                   : light_select_pdf_ * area_light_pdf(lights[size_t(li)], prev_p, sp.p, sp.ng);
+        const float lp = li < 0 ? 0.0f
+                                : scene_.light_sampler().probability(size_t(li)) *
+                                      mesh_light_pdf(lights[size_t(li)], prev_p, sp.p, sp.ng);
         L += beta * emitted * power_heuristic(1.0f, prev_pdf, 1.0f, lp);
       }
     }
     if (bounce > settings_.max_bounces || bsdf.num_components() == 0) break;
 
-    if (bsdf.has_non_delta()) L += beta * sample_one_light(sp, bsdf, wo, rng, stats);
+    if (bsdf.has_non_delta()) L += beta * sample_one_light(hit, sp, bsdf, wo, rng, stats);
 
     const float u1 = rng.uniform(), u2 = rng.uniform();
     const BSDFSample bs = bsdf.sample_f(wo, Point2(u1, u2));
     if (!bs.valid() || bs.f.is_black()) break;
-    beta *= bs.f_cos / bs.pdf;
+    const float cos_out = dot(bs.wi, sp.ns);
+    beta *= bs.f_cos * (shading_offset_factor(cos_out, scene_.terminator(hit.mesh).shading) / bs.pdf);
     if (beta.is_black()) break;
     if (transmissive && (bs.flags & kTransmission)) {
       // Entering (wo on the front side) scales radiance by (η_i/η_t)²; leaving undoes it.
@@ -180,11 +248,13 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     if (bounce >= settings_.russian_roulette_depth) {
       // Judged on the throughput without refraction's radiance scaling, as pbrt does, so that a
       // path inside glass is not ended more often only because its radiance is scaled down.
+      // Continued with Cycles' probability √(max throughput), capped at 1: a path that still
+      // carries its full throughput is never cut, so a white furnace stays noise-free.
       const float m = beta.max_component() * eta_scale;
-      if (m < 1.0f) {
-        const float q = std::max(0.05f, 1.0f - m);
-        if (rng.uniform() < q) break;
-        beta *= 1.0f / (1.0f - q);
+      const float p = std::min(std::sqrt(m), 1.0f);
+      if (p < 1.0f) {
+        if (!(rng.uniform() < p)) break;
+        beta *= 1.0f / p;
       }
     }
   }

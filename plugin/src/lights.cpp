@@ -7,6 +7,7 @@
 #include "bxdf/frame.h"
 #include "bxdf/params.h"
 #include "bxdf/sampling.h"
+#include "bxdf/render/spherical_rectangle.h"
 
 namespace bxdf::render {
 
@@ -32,32 +33,77 @@ void require_colour(const char* what, const char* name, const RGB& c) {
                          ", " + str(c.b) + ") must be in [0, inf) per channel");
 }
 
+void require_power(const char* what, float power_w) {
+  if (!(power_w >= 0.0f) || !std::isfinite(power_w))
+    throw ParameterError(std::string(what) + " power " + str(power_w) + " must be in [0, inf) W");
+}
+
+void set_radius(Light& l, const char* what, float radius) {
+  if (!(radius >= 0.0f) || !std::isfinite(radius))
+    throw ParameterError(std::string(what) + " radius " + str(radius) + " must be in [0, inf) m");
+  l.radius = radius;
+  if (radius > 0.0f) {
+    l.inv_area = 1.0f / (kPi * radius * radius);
+    l.radiance = l.intensity * l.inv_area;  // I = L·π r²: the disk's intensity towards any point
+  }
+}
+
 float smoothstep(float edge0, float edge1, float x) {
   const float t = clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
   return t * t * (3.0f - 2.0f * t);
 }
 
+// Cycles' lamp_light_pdf: area density → solid angle, for a surface with normal n seen along
+// `to_point` (unit, from the light towards the shading point) at distance t.
+float area_to_solid_angle(const Vec3& n, const Vec3& to_point, float t) {
+  const float cos_light = dot(n, to_point);
+  return cos_light > 0.0f ? t * t / cos_light : 0.0f;
+}
+
+// A point uniformly on the disk of radius r centred at c and facing n.
+Vec3 sample_disk(const Vec3& c, const Vec3& n, float r, Point2 u) {
+  Vec3 s, t;
+  coordinate_system(n, &s, &t);
+  const Point2 d = sample_concentric_disk(u);
+  return c + (s * d.x + t * d.y) * r;
+}
+
+// The disk facing the shading point (point and spot lights with a radius): hit distance of the
+// ray origin + t·dir, t in (0, tmax), or a negative value.
+float intersect_facing_disk(const Vec3& centre, float radius, const Vec3& origin,
+                            const Vec3& dir, float tmax) {
+  Vec3 n = origin - centre;
+  if (!normalize_direction(n)) return -1.0f;
+  const float cos_dir = dot(dir, n);
+  if (!(cos_dir < 0.0f)) return -1.0f;
+  const float t = dot(centre - origin, n) / cos_dir;
+  if (!(t > 0.0f && t < tmax)) return -1.0f;
+  const Vec3 q = origin + dir * t - centre;
+  return length_squared(q) <= radius * radius ? t : -1.0f;
+}
+
 }  // namespace
 
-Light point_light(const Vec3& position, const RGB& intensity) {
+Light point_light(const Vec3& position, const RGB& intensity, float radius) {
   require_finite_point("point light", position);
   require_colour("point light", "intensity", intensity);
   Light l;
   l.type = LightType::Point;
   l.position = position;
   l.intensity = intensity;
+  set_radius(l, "point light", radius);
   return l;
 }
 
-Light point_light_from_power(const Vec3& position, float power_w, const RGB& color) {
-  if (!(power_w >= 0.0f) || !std::isfinite(power_w))
-    throw ParameterError("point light power " + str(power_w) + " must be in [0, inf) W");
+Light point_light_from_power(const Vec3& position, float power_w, const RGB& color,
+                             float radius) {
+  require_power("point light", power_w);
   require_colour("point light", "color", color);
-  return point_light(position, color * (power_w * kInv4Pi));
+  return point_light(position, color * (power_w * kInv4Pi), radius);
 }
 
 Light spot_light(const Vec3& position, const Vec3& direction, const RGB& intensity,
-                 float spot_size, float spot_blend) {
+                 float spot_size, float spot_blend, float radius) {
   require_finite_point("spot light", position);
   require_colour("spot light", "intensity", intensity);
   if (!(spot_size > 0.0f && spot_size <= kPi))
@@ -72,41 +118,55 @@ Light spot_light(const Vec3& position, const Vec3& direction, const RGB& intensi
   // As Blender hands them to Cycles: cos of the half angle, and the blend band in cosine.
   l.cos_half_spot = std::cos(0.5f * spot_size);
   l.spot_smooth = (1.0f - l.cos_half_spot) * spot_blend;
+  set_radius(l, "spot light", radius);
   return l;
 }
 
 Light spot_light_from_power(const Vec3& position, const Vec3& direction, float power_w,
-                            const RGB& color, float spot_size, float spot_blend) {
-  if (!(power_w >= 0.0f) || !std::isfinite(power_w))
-    throw ParameterError("spot light power " + str(power_w) + " must be in [0, inf) W");
+                            const RGB& color, float spot_size, float spot_blend, float radius) {
+  require_power("spot light", power_w);
   require_colour("spot light", "color", color);
-  return spot_light(position, direction, color * (power_w * kInv4Pi), spot_size, spot_blend);
+  return spot_light(position, direction, color * (power_w * kInv4Pi), spot_size, spot_blend,
+                    radius);
 }
 
 Light sun_light(const Vec3& direction, const RGB& irradiance, float angle) {
   require_colour("sun light", "irradiance", irradiance);
-  if (!(angle >= 0.0f && angle < kPiOver2))
-    throw ParameterError("sun light angle " + str(angle) + " must be in [0, pi/2) radians");
+  if (!(angle >= 0.0f && angle < kPi))
+    throw ParameterError("sun light angle " + str(angle) + " must be in [0, pi) radians");
   Light l;
   l.type = LightType::Sun;
   l.direction = require_direction("sun light", direction);
   l.irradiance = irradiance;
-  l.cos_sun_max = std::cos(0.5f * angle);
   if (angle > 0.0f) {
-    // Uniform radiance over a cone of half-angle θ gives irradiance L·π·sin²θ at normal incidence.
-    const float s = std::sin(0.5f * angle);
-    l.radiance = irradiance / (kPi * s * s);
-  } else {
-    l.cos_sun_max = 1.0f;
+    l.radius = std::tan(0.5f * angle);
+    l.inv_area = 1.0f / (kPi * l.radius * l.radius);
+    l.cos_sun_max = std::cos(0.5f * angle);
   }
   return l;
 }
 
-Light world_light(const RGB& radiance) {
-  require_colour("world", "color", radiance);
+Light area_light_from_power(const Vec3& centre, const Vec3& axis_u, const Vec3& axis_v,
+                            const Vec3& normal, AreaShape shape, float power_w,
+                            const RGB& color) {
+  require_finite_point("area light", centre);
+  require_power("area light", power_w);
+  require_colour("area light", "color", color);
+  if (!is_finite(axis_u) || !is_finite(axis_v))
+    throw ParameterError("area light size must be finite");
   Light l;
-  l.type = LightType::World;
-  l.radiance = radiance;
+  l.type = LightType::Area;
+  l.position = centre;
+  l.axis_u = axis_u;
+  l.axis_v = axis_v;
+  l.direction = require_direction("area light", normal);
+  l.shape = shape;
+  const float area = length(axis_u) * length(axis_v) * (shape == AreaShape::Ellipse ? kPi / 4 : 1);
+  if (!(area > 0.0f))
+    throw ParameterError("area light size (" + str(length(axis_u)) + ", " + str(length(axis_v)) +
+                         ") must be in (0, inf) m per axis");
+  l.inv_area = 1.0f / area;
+  l.radiance = color * (power_w * 0.25f * l.inv_area);
   return l;
 }
 
@@ -125,15 +185,28 @@ LightSample sample_light(const Light& light, const Vec3& p, Point2 u) {
   switch (light.type) {
     case LightType::Point:
     case LightType::Spot: {
-      Vec3 d = light.position - p;
+      Vec3 q = light.position;
+      if (light.radius > 0.0f) {
+        Vec3 n = p - light.position;
+        if (!normalize_direction(n)) return s;
+        q = sample_disk(light.position, n, light.radius, u);
+      }
+      const Vec3 d = q - p;
       const float d2 = length_squared(d);
       if (!(d2 > 0.0f)) return s;
       s.distance = std::sqrt(d2);
       s.wi = d / s.distance;
-      float atten = 1.0f;
-      if (light.type == LightType::Spot) atten = spot_attenuation(light, -s.wi);
-      s.radiance = light.intensity * (atten / d2);
-      s.pdf = 1.0f;
+      const float atten = light.type == LightType::Spot ? spot_attenuation(light, -s.wi) : 1.0f;
+      if (!(atten > 0.0f)) return s;
+      if (light.radius == 0.0f) {
+        s.radiance = light.intensity * (atten / d2);
+        s.pdf = 1.0f;
+        return s;
+      }
+      Vec3 n = p - light.position;
+      normalize_direction(n);
+      s.pdf = light.inv_area * area_to_solid_angle(n, -s.wi, s.distance);
+      s.radiance = light.radiance * atten;
       return s;
     }
     case LightType::Sun: {
@@ -144,20 +217,38 @@ LightSample sample_light(const Light& light, const Vec3& p, Point2 u) {
         s.pdf = 1.0f;
         return s;
       }
-      const Frame f = Frame::from_normal(-light.direction);
-      s.wi = f.to_world(sample_uniform_cone(u, light.cos_sun_max));
-      s.radiance = light.radiance;
-      s.pdf = uniform_cone_pdf(light.cos_sun_max);
-      return s;
-    }
-    case LightType::World: {
-      s.distance = kInfinity;
-      s.wi = sample_uniform_sphere(u);
-      s.radiance = light.radiance;
-      s.pdf = uniform_sphere_pdf();
+      // A disk of radius tan(angle/2) at unit distance: density inv_area/cos³θ in solid angle,
+      // and radiance E times that density (Cycles' eval_fac = pdf).
+      Vec3 wi = sample_disk(-light.direction, -light.direction, light.radius, u);
+      if (!normalize_direction(wi)) return s;
+      const float c = dot(wi, -light.direction);
+      s.wi = wi;
+      s.pdf = light.inv_area / (c * c * c);
+      s.radiance = light.irradiance * s.pdf;
       return s;
     }
     case LightType::Area: {
+      // One-sided: points behind the light get nothing.
+      if (dot(light.position - p, light.direction) > 0.0f) return s;
+      Vec3 q;
+      if (light.shape == AreaShape::Rectangle) {
+        s.pdf = sample_spherical_rectangle(p, light.position, light.axis_u, light.axis_v, u, &q);
+      } else {
+        const Point2 d = sample_concentric_disk(u);
+        q = light.position + light.axis_u * (0.5f * d.x) + light.axis_v * (0.5f * d.y);
+      }
+      const Vec3 d = q - p;
+      const float d2 = length_squared(d);
+      if (!(d2 > 0.0f)) return LightSample{};
+      s.distance = std::sqrt(d2);
+      s.wi = d / s.distance;
+      if (light.shape == AreaShape::Ellipse)
+        s.pdf = light.inv_area * area_to_solid_angle(light.direction, -s.wi, s.distance);
+      if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return LightSample{};
+      s.radiance = light.radiance;
+      return s;
+    }
+    case LightType::Mesh: {
       if (light.triangles.empty() || !(light.total_area > 0.0f)) return s;
       // Pick a triangle by area with u.x, then reuse the rest of u.x for the point.
       const float target = u.x * light.total_area;
@@ -188,30 +279,74 @@ LightSample sample_light(const Light& light, const Vec3& p, Point2 u) {
   return s;
 }
 
-float area_light_pdf(const Light& area, const Vec3& p, const Vec3& hit_point,
+bool intersect_light(const Light& light, const Vec3& origin, const Vec3& dir, float tmax,
+                     LightHit* hit) {
+  if (light.type == LightType::Point || light.type == LightType::Spot) {
+    if (!(light.radius > 0.0f)) return false;
+    const float t = intersect_facing_disk(light.position, light.radius, origin, dir, tmax);
+    if (!(t > 0.0f)) return false;
+    float atten = light.type == LightType::Spot ? spot_attenuation(light, -dir) : 1.0f;
+    if (!(atten > 0.0f)) return false;
+    Vec3 n = origin - light.position;
+    normalize_direction(n);
+    hit->t = t;
+    hit->radiance = light.radiance * atten;
+    hit->pdf = light.inv_area * area_to_solid_angle(n, -dir, t);
+    return true;
+  }
+  if (light.type != LightType::Area) return false;
+  const float cos_dir = dot(dir, light.direction);
+  if (!(cos_dir < 0.0f)) return false;  // one-sided
+  const float t = dot(light.position - origin, light.direction) / cos_dir;
+  if (!(t > 0.0f && t < tmax)) return false;
+  const Vec3 q = origin + dir * t - light.position;
+  const float x = 2.0f * dot(q, light.axis_u) / length_squared(light.axis_u);
+  const float y = 2.0f * dot(q, light.axis_v) / length_squared(light.axis_v);
+  const bool inside = light.shape == AreaShape::Ellipse ? x * x + y * y <= 1.0f
+                                                        : std::fabs(x) <= 1.0f && std::fabs(y) <= 1.0f;
+  if (!inside) return false;
+  hit->t = t;
+  hit->radiance = light.radiance;
+  hit->pdf = light.shape == AreaShape::Ellipse
+                 ? light.inv_area * area_to_solid_angle(light.direction, -dir, t)
+                 : spherical_rectangle_pdf(origin, light.position, light.axis_u, light.axis_v);
+  return hit->pdf > 0.0f && std::isfinite(hit->pdf);
+}
+
+float mesh_light_pdf(const Light& mesh, const Vec3& p, const Vec3& hit_point,
                      const Vec3& hit_normal) {
   const Vec3 d = hit_point - p;
   const float d2 = length_squared(d);
-  if (!(d2 > 0.0f) || !(area.total_area > 0.0f)) return 0.0f;
+  if (!(d2 > 0.0f) || !(mesh.total_area > 0.0f)) return 0.0f;
   const float cos_light = std::fabs(dot(hit_normal, d)) / std::sqrt(d2);
   if (!(cos_light > 0.0f)) return 0.0f;
-  return d2 / (cos_light * area.total_area);
+  return d2 / (cos_light * mesh.total_area);
 }
 
-float environment_pdf(const Light& light, const Vec3& wi) {
-  if (light.type == LightType::World) return uniform_sphere_pdf();
-  if (light.type == LightType::Sun && light.cos_sun_max < 1.0f &&
-      dot(wi, -light.direction) > light.cos_sun_max)
-    return uniform_cone_pdf(light.cos_sun_max);
+bool sun_radiance(const Light& sun, const Vec3& dir, RGB* radiance, float* pdf) {
+  if (sun.type != LightType::Sun || sun.cos_sun_max >= 1.0f) return false;
+  const float c = dot(dir, -sun.direction);
+  if (!(c >= sun.cos_sun_max)) return false;
+  *pdf = sun.inv_area / (c * c * c);
+  *radiance = sun.irradiance * *pdf;
+  return true;
+}
+
+float light_power(const Light& light, float scene_radius) {
+  switch (light.type) {
+    case LightType::Point: return 4.0f * kPi * light.intensity.average();
+    case LightType::Spot:
+      // The cone's solid angle (to the outer edge; the mask's cosine is ignored).
+      return 2.0f * kPi * (1.0f - light.cos_half_spot) * light.intensity.average();
+    case LightType::Sun: return kPi * scene_radius * scene_radius * light.irradiance.average();
+    case LightType::Area: return kPi * light.radiance.average() / light.inv_area;
+    case LightType::Mesh: {
+      float p = 0.0f;
+      for (const EmissiveTriangle& t : light.triangles) p += t.radiance.average() * t.area;
+      return 2.0f * kPi * p;  // two-sided
+    }
+  }
   return 0.0f;
-}
-
-RGB environment_radiance(const Light& light, const Vec3& wi) {
-  if (light.type == LightType::World) return light.radiance;
-  if (light.type == LightType::Sun && light.cos_sun_max < 1.0f &&
-      dot(wi, -light.direction) > light.cos_sun_max)
-    return light.radiance;
-  return RGB(0.0f);
 }
 
 }  // namespace bxdf::render

@@ -59,6 +59,7 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   IntegratorSettings integrator_settings;
   integrator_settings.max_bounces = settings.max_bounces;
   integrator_settings.russian_roulette_depth = settings.russian_roulette_depth;
+  integrator_settings.transparent_background = settings.transparent_background;
   const PathTracer tracer(scene, integrator_settings);
   Film film(settings.width, settings.height);
 

@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -36,6 +37,10 @@ std::string embree_error(RTCDevice device) {
     default: return "unknown error";
   }
 }
+
+constexpr float kHuge = 3.0e38f;
+// Embree geometry masks: which kinds of ray see a mesh.
+constexpr unsigned kMaskCamera = 1u, kMaskShadow = 2u, kMaskOther = 4u;
 
 Vec3 load3(const std::vector<float>& a, uint32_t i) {
   return {a[3 * size_t(i)], a[3 * size_t(i) + 1], a[3 * size_t(i) + 2]};
@@ -198,6 +203,14 @@ uint32_t Scene::add_mesh(const MeshView& m) {
                            std::to_string(s.indices[i]) + ", valid range [0, " +
                            std::to_string(m.num_vertices - 1) + "]");
   s.material = m.material;
+  if (!(m.terminator.geometry >= 0.0f && m.terminator.geometry <= 1.0f))
+    throw ParameterError(who + ": terminator geometry offset " + std::to_string(m.terminator.geometry) +
+                         " must be in [0, 1]");
+  if (!(m.terminator.shading >= 0.0f && m.terminator.shading < 1.0f))
+    throw ParameterError(who + ": terminator shading offset " + std::to_string(m.terminator.shading) +
+                         " must be in [0, 1)");
+  s.visibility = m.visibility;
+  s.terminator = m.terminator;
   if (m.material_indices) {
     s.material_indices.assign(m.material_indices, m.material_indices + m.num_triangles);
     for (size_t i = 0; i < s.material_indices.size(); ++i)
@@ -215,17 +228,20 @@ uint32_t Scene::add_mesh(const MeshView& m) {
 
 void Scene::add_light(Light light) {
   if (committed_) throw ParameterError("add_light: the scene is already committed");
-  if (light.type == LightType::Area || light.type == LightType::World)
-    throw ParameterError("add_light: area lights come from emissive materials and the world "
-                         "from set_world");
+  if (light.type == LightType::Mesh)
+    throw ParameterError("add_light: mesh lights come from emissive materials");
   lights_.push_back(std::move(light));
 }
 
 void Scene::set_world(const RGB& radiance) {
+  EnvironmentSettings s;
+  s.constant = radiance;
+  set_world(std::move(s));
+}
+
+void Scene::set_world(EnvironmentSettings settings) {
   if (committed_) throw ParameterError("set_world: the scene is already committed");
-  if (!finite_nonnegative(radiance))
-    throw ParameterError("world color must be in [0, inf) per channel");
-  world_ = radiance;
+  world_ = Environment(std::move(settings));
 }
 
 size_t Scene::num_triangles() const {
@@ -241,8 +257,23 @@ void Scene::commit() {
   if (!e.device) throw std::runtime_error("Embree: cannot create a device");
   e.scene = rtcNewScene(e.device);
   rtcSetSceneBuildQuality(e.scene, RTC_BUILD_QUALITY_HIGH);
+  const bool masks = rtcGetDeviceProperty(e.device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0;
+  for (const StoredMesh& m : meshes_)
+    if (!masks && (!m.visibility.camera || !m.visibility.shadow))
+      throw std::runtime_error("Embree: this build has no ray masks, which camera and shadow "
+                               "visibility need");
+  Vec3 lo(kHuge, kHuge, kHuge), hi(-kHuge, -kHuge, -kHuge);
   for (const StoredMesh& m : meshes_) {
+    for (size_t i = 0; i < m.positions.size(); i += 3) {
+      lo = Vec3(std::min(lo.x, m.positions[i]), std::min(lo.y, m.positions[i + 1]),
+                std::min(lo.z, m.positions[i + 2]));
+      hi = Vec3(std::max(hi.x, m.positions[i]), std::max(hi.y, m.positions[i + 1]),
+                std::max(hi.z, m.positions[i + 2]));
+    }
     RTCGeometry g = rtcNewGeometry(e.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (masks)
+      rtcSetGeometryMask(g, kMaskOther | (m.visibility.camera ? kMaskCamera : 0u) |
+                                (m.visibility.shadow ? kMaskShadow : 0u));
     const size_t nv = m.positions.size() / 3, nt = m.indices.size() / 3;
     auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
@@ -259,12 +290,12 @@ void Scene::commit() {
   if (rtcGetDeviceError(e.device) != RTC_ERROR_NONE)
     throw std::runtime_error("Embree: building the BVH failed: " + embree_error(e.device));
 
-  // One area light per mesh that has emissive triangles.
+  // One mesh light per mesh that has emissive triangles.
   mesh_area_light_.assign(meshes_.size(), -1);
   for (size_t mi = 0; mi < meshes_.size(); ++mi) {
     const StoredMesh& m = meshes_[mi];
     Light area;
-    area.type = LightType::Area;
+    area.type = LightType::Mesh;
     for (size_t t = 0; t < m.indices.size() / 3; ++t) {
       const uint32_t mat = m.material_indices.empty() ? m.material : m.material_indices[t];
       const RGB& le = materials_[mat].emission;
@@ -286,11 +317,24 @@ void Scene::commit() {
     mesh_area_light_[mi] = static_cast<int>(lights_.size());
     lights_.push_back(std::move(area));
   }
-  if (!world_.is_black()) lights_.push_back(world_light(world_));
+  for (const Light& l : lights_)
+    if (l.type == LightType::Point || l.type == LightType::Spot || l.type == LightType::Area) {
+      const Vec3 p = l.position;
+      const float r = l.type == LightType::Area ? 0.5f * (length(l.axis_u) + length(l.axis_v)) : l.radius;
+      lo = Vec3(std::min(lo.x, p.x - r), std::min(lo.y, p.y - r), std::min(lo.z, p.z - r));
+      hi = Vec3(std::max(hi.x, p.x + r), std::max(hi.y, p.y + r), std::max(hi.z, p.z + r));
+    }
+  bounding_radius_ = hi.x >= lo.x ? std::max(0.5f * length(hi - lo), 1e-3f) : 1.0f;
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    if (lights_[i].is_hittable()) hittable_lights_.push_back(static_cast<uint32_t>(i));
+    if (lights_[i].type == LightType::Sun && !lights_[i].is_delta())
+      wide_suns_.push_back(static_cast<uint32_t>(i));
+  }
+  light_sampler_ = LightSampler(lights_, &world_, bounding_radius_);
   committed_ = true;
 }
 
-bool Scene::intersect(const Ray& ray, Hit* hit) const {
+bool Scene::intersect(const Ray& ray, Hit* hit, bool camera_ray) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh;
@@ -303,7 +347,7 @@ bool Scene::intersect(const Ray& ray, Hit* hit) const {
   rh.ray.tnear = ray.tmin;
   rh.ray.tfar = ray.tmax;
   rh.ray.time = 0.0f;
-  rh.ray.mask = 0xffffffffu;
+  rh.ray.mask = camera_ray ? kMaskCamera : kMaskOther;
   rh.ray.id = 0;
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -331,7 +375,7 @@ bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
   r.tnear = 0.0f;
   r.tfar = tmax;
   r.time = 0.0f;
-  r.mask = 0xffffffffu;
+  r.mask = kMaskShadow;
   r.id = 0;
   r.flags = 0;
   rtcOccluded1(embree_->scene, &ctx, &r);
@@ -431,6 +475,18 @@ Vec3 Scene::generated(const Hit& hit, const Vec3& p) const {
   const Vec3 d = object_position(hit, p) - m.texspace_location;
   return {d.x * m.texspace_inv_size.x * 0.5f + 0.5f, d.y * m.texspace_inv_size.y * 0.5f + 0.5f,
           d.z * m.texspace_inv_size.z * 0.5f + 0.5f};
+}
+
+bool Scene::smooth_triangle(const Hit& hit, SmoothTriangle* tri) const {
+  const StoredMesh& m = meshes_[hit.mesh];
+  if (m.normals.empty()) return false;
+  for (int k = 0; k < 3; ++k) {
+    const uint32_t i = m.indices[3 * size_t(hit.triangle) + k];
+    tri->v[k] = load3(m.positions, i);
+    tri->n[k] = load3(m.normals, i);
+    if (tri->n[k] == Vec3(0, 0, 0)) return false;  // broken normal: shaded flat
+  }
+  return true;
 }
 
 void* Scene::embree_scene() const { return embree_->scene; }

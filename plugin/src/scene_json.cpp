@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bxdf/io/material_json.h"
+#include "bxdf/render/environment.h"
 #include "bxdf/render/lights.h"
 #include "bxdf/render/material_graph_json.h"
 #include "bxdf/render/shapes.h"
@@ -511,14 +512,36 @@ Light read_light(const Reader& r, const json& j, const std::string& path) {
     const RGB color = j.contains("color") ? r.colour(j["color"], path + ".color") : RGB(1.0f);
     return color * (power * kInv4Pi);
   };
+  const auto radius = [&]() -> float {
+    return j.contains("radius") ? static_cast<float>(r.number_in(j["radius"], path + ".radius", 0.0,
+                                                                 1e30, "[0, inf) m"))
+                                : 0.0f;
+  };
   try {
     if (type == "point") {
-      r.only_keys(j, path, {"type", "position", "intensity", "power", "color"});
-      return point_light(r.vec3(r.require(j, path, "position"), path + ".position"), intensity());
+      r.only_keys(j, path, {"type", "position", "intensity", "power", "color", "radius"});
+      return point_light(r.vec3(r.require(j, path, "position"), path + ".position"), intensity(),
+                         radius());
+    }
+    if (type == "area") {
+      // A Blender area light: centre, full edge vectors along its X and Y; it emits along −Z,
+      // that is along edge_v × edge_u.
+      r.only_keys(j, path, {"type", "position", "edge_u", "edge_v", "shape", "power", "color"});
+      const std::string shape = j.contains("shape") ? r.string(j["shape"], path + ".shape") : "rectangle";
+      if (shape != "rectangle" && shape != "square" && shape != "ellipse" && shape != "disk")
+        r.fail(path + ".shape", "one of \"square\", \"rectangle\", \"disk\", \"ellipse\"", j["shape"]);
+      const Vec3 eu = r.vec3(r.require(j, path, "edge_u"), path + ".edge_u");
+      const Vec3 ev = r.vec3(r.require(j, path, "edge_v"), path + ".edge_v");
+      const float power = static_cast<float>(
+          r.number_in(r.require(j, path, "power"), path + ".power", 0.0, 1e30, "[0, inf) W"));
+      return area_light_from_power(
+          r.vec3(r.require(j, path, "position"), path + ".position"), eu, ev, cross(ev, eu),
+          shape == "ellipse" || shape == "disk" ? AreaShape::Ellipse : AreaShape::Rectangle, power,
+          j.contains("color") ? r.colour(j["color"], path + ".color") : RGB(1.0f));
     }
     if (type == "spot") {
       r.only_keys(j, path, {"type", "position", "direction", "intensity", "power", "color",
-                            "spot_size", "spot_blend"});
+                            "spot_size", "spot_blend", "radius"});
       const float size = j.contains("spot_size")
                              ? static_cast<float>(r.number_in(j["spot_size"], path + ".spot_size",
                                                               1e-9, kPi, "(0, pi] radians"))
@@ -529,7 +552,7 @@ Light read_light(const Reader& r, const json& j, const std::string& path) {
                               : 0.15f;
       return spot_light(r.vec3(r.require(j, path, "position"), path + ".position"),
                         r.vec3(r.require(j, path, "direction"), path + ".direction"), intensity(),
-                        size, blend);
+                        size, blend, radius());
     }
     if (type == "sun") {
       r.only_keys(j, path, {"type", "direction", "irradiance", "strength", "color", "angle"});
@@ -544,7 +567,7 @@ Light read_light(const Reader& r, const json& j, const std::string& path) {
       }
       const float angle = j.contains("angle")
                               ? static_cast<float>(r.number_in(j["angle"], path + ".angle", 0.0,
-                                                               kPiOver2 * 0.999, "[0, pi/2) radians"))
+                                                               kPi * 0.999, "[0, pi) radians"))
                               : 0.0f;
       return sun_light(r.vec3(r.require(j, path, "direction"), path + ".direction"), e, angle);
     }
@@ -553,8 +576,51 @@ Light read_light(const Reader& r, const json& j, const std::string& path) {
   } catch (const ParameterError& e) {
     r.fail_message(path, e.what());
   }
-  r.fail(path + ".type", "one of \"point\", \"spot\", \"sun\" (area lights are emissive materials)",
-         j["type"]);
+  r.fail(path + ".type", "one of \"point\", \"spot\", \"sun\", \"area\"", j["type"]);
+}
+
+// {"color": rgb, "texture": {"path", "weight", "matrix" (3×4 rows), "interpolation"},
+//  "sampling": "auto"|"manual"|"none", "map_resolution": n}: see environment.h.
+EnvironmentSettings read_world(const Reader& r, const json& w) {
+  r.only_keys(w, "world", {"color", "texture", "sampling", "map_resolution"});
+  EnvironmentSettings s;
+  if (w.contains("color")) s.constant = r.colour(w["color"], "world.color");
+  if (w.contains("texture")) {
+    const json& t = w["texture"];
+    r.object(t, "world.texture");
+    r.only_keys(t, "world.texture", {"path", "weight", "matrix", "interpolation"});
+    std::filesystem::path p = r.string(r.require(t, "world.texture", "path"), "world.texture.path");
+    if (p.is_relative()) p = std::filesystem::path(r.base_) / p;
+    try {
+      s.image = load_equirect_image(p.string());
+    } catch (const std::exception& e) {
+      r.fail_message("world.texture.path", e.what());
+    }
+    s.weight = t.contains("weight") ? r.colour(t["weight"], "world.texture.weight") : RGB(1.0f);
+    if (t.contains("matrix")) {
+      const json& m = t["matrix"];
+      if (!m.is_array() || m.size() != 3) r.fail("world.texture.matrix", "3 rows of 4 numbers", m);
+      for (int i = 0; i < 3; ++i) {
+        const std::string row = "world.texture.matrix[" + std::to_string(i) + "]";
+        if (!m[i].is_array() || m[i].size() != 4) r.fail(row, "4 numbers", m[i]);
+        for (int k = 0; k < 4; ++k)
+          s.matrix[4 * i + k] = static_cast<float>(r.number(m[i][k], row + "[" + std::to_string(k) + "]"));
+      }
+    }
+    if (t.contains("interpolation")) {
+      const std::string mode = r.string(t["interpolation"], "world.texture.interpolation");
+      if (mode == "closest") s.interpolation = TextureInterpolation::Closest;
+      else if (mode != "linear") r.fail("world.texture.interpolation", "\"closest\" or \"linear\"", t["interpolation"]);
+    }
+  }
+  if (w.contains("sampling")) {
+    const std::string mode = r.string(w["sampling"], "world.sampling");
+    if (mode == "none") s.importance_sample = false;
+    else if (mode != "auto" && mode != "manual") r.fail("world.sampling", "\"auto\", \"manual\" or \"none\"", w["sampling"]);
+  }
+  if (w.contains("map_resolution"))
+    s.map_resolution = r.integer_in(w["map_resolution"], "world.map_resolution", 0, 65536, "[0, 65536] (even)");
+  return s;
 }
 
 }  // namespace
@@ -579,8 +645,11 @@ LoadedScene parse_scene_json(const std::string& text, const std::string& name,
   if (root.contains("world")) {
     const json& w = root["world"];
     if (w.is_object()) {
-      r.only_keys(w, "world", {"color"});
-      scene.set_world(r.colour(r.require(w, "world", "color"), "world.color"));
+      try {
+        scene.set_world(read_world(r, w));
+      } catch (const ParameterError& e) {
+        r.fail_message("world", e.what());
+      }
     } else {
       scene.set_world(r.colour(w, "world"));
     }

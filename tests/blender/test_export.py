@@ -176,8 +176,11 @@ def test_lights_in_blender_units(scene):
     np.testing.assert_allclose(point["direction"], (0, 0, -1), atol=1e-7)
     np.testing.assert_allclose(lights["sun"]["irradiance"], 3.0 * color, rtol=1e-6)
     area = lights["area"]
-    assert area["area"] == pytest.approx(1.0)
-    np.testing.assert_allclose(area["radiance"], 50.0 * color / math.pi, rtol=1e-6)
+    assert area["power"] == pytest.approx(50.0) and area["size"] == pytest.approx((2.0, 0.5))
+    assert area["shape"] == "rectangle"
+    np.testing.assert_allclose(area["color"], color, rtol=1e-6)
+    # Lights are hidden from camera rays unless their object says otherwise, as in Cycles.
+    assert all(not l["visible_camera"] and l["cast_shadow"] and l["use_mis"] for l in lights.values())
 
 
 def test_camera_resolution_and_world(scene):
@@ -191,14 +194,17 @@ def test_camera_resolution_and_world(scene):
     assert data["warnings"] == []
 
 
-def test_a_textured_world_is_exported_as_its_colour_with_a_warning(scene):
+def test_an_unsupported_world_texture_becomes_the_socket_default_with_a_warning(scene):
     tree = scene.world.node_tree
     sky = tree.nodes.new("ShaderNodeTexSky")
-    tree.links.new(sky.outputs["Color"], tree.nodes["Background"].inputs["Color"])
-    scene.world.color = (0.1, 0.2, 0.3)
+    background = tree.nodes["Background"]
+    tree.links.new(sky.outputs["Color"], background.inputs["Color"])
+    background.inputs["Color"].default_value = (0.1, 0.2, 0.3, 1.0)
+    background.inputs["Strength"].default_value = 2.0
     data = _export()
-    np.testing.assert_allclose(data["world"]["color"], (0.1, 0.2, 0.3), rtol=1e-6)
-    assert len(data["warnings"]) == 1 and "world" in data["warnings"][0]
+    np.testing.assert_allclose(data["world"]["color"], (0.2, 0.4, 0.6), rtol=1e-6)
+    assert len(data["warnings"]) == 1
+    assert "world 'world'" in data["warnings"][0] and sky.name in data["warnings"][0]
 
 
 def test_a_broken_material_is_refused_naming_it(scene):

@@ -211,7 +211,7 @@ TEST(AreaLight, EmissiveEnclosureLightsASphereToItsAlbedo) {
   scene.add_mesh(enclosure.view());
   scene.commit();
   ASSERT_EQ(scene.lights().size(), 1u);
-  EXPECT_EQ(scene.lights()[0].type, LightType::Area);
+  EXPECT_EQ(scene.lights()[0].type, LightType::Mesh);
   RenderSettings s;
   s.width = s.height = 24;
   s.samples_per_pixel = 64;

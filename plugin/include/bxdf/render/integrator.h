@@ -1,7 +1,11 @@
 // The path tracer (pbrt's PathIntegrator with one-light next-event estimation): at each vertex
-// one light is picked uniformly and sampled, the BSDF is sampled to continue the path, and both
-// strategies are combined with the power heuristic; delta lights and delta lobes are counted by
-// the one strategy that can find them. Russian roulette from the fourth bounce on.
+// one light is picked in proportion to its power (light_sampler.h) and sampled, the BSDF is
+// sampled to continue the path, and both strategies are combined with the power heuristic;
+// delta lights and delta lobes are counted by the one strategy that can find them. Lights are
+// not geometry: rays pass through them, collecting their radiance (as Cycles' lights_intersect).
+// A constant world is found by BSDF sampling alone (Cycles does not light-sample it). Shadow
+// rays leave from Cycles' terminator-offset point. Russian roulette from the fourth bounce on,
+// continuing with Cycles' probability √(max throughput).
 #pragma once
 
 #include <cstdint>
@@ -17,6 +21,7 @@ struct IntegratorSettings {
   // 0 = direct light only (emitters seen from the first hit); n = up to n indirect bounces.
   int max_bounces = 8;
   int russian_roulette_depth = 3;  // first bounce at which a path may be ended at random
+  bool transparent_background = false;  // camera rays that escape get no world radiance
 };
 
 // Per-thread counters, summed after the render.
@@ -42,13 +47,18 @@ class PathTracer {
   PathResult trace(const Ray& camera_ray, PCG32& rng, PathStats& stats) const;
 
  private:
-  RGB sample_one_light(const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo, PCG32& rng,
-                       PathStats& stats) const;
+  RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
+                       PCG32& rng, PathStats& stats) const;
+  // Radiance a ray collects from the lights it passes through before `tmax`; MIS-weighted
+  // against light sampling unless `count_fully` (camera rays, delta bounces).
+  RGB lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bool count_fully,
+                       float bsdf_pdf) const;
+  // Radiance an escaped ray receives from the world and the suns with an angle (camera rays
+  // see a sun only when it is visible to the camera).
+  RGB escaped(const Vec3& dir, bool camera_ray, bool count_fully, float bsdf_pdf) const;
 
   const Scene& scene_;
   IntegratorSettings settings_;
-  float light_select_pdf_ = 0.0f;          // lights are picked uniformly
-  std::vector<int> environment_lights_;    // world and suns with a cone: found by escaping rays
 };
 
 }  // namespace bxdf::render

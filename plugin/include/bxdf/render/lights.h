@@ -1,12 +1,19 @@
-// Lights in Blender's units. Point and spot lights have radius 0 and a radiant intensity I in
-// W/sr (Blender: I = P·colour/(4π) for power P in W); a spot adds Cycles 3.4's cone mask from
-// spot_size and spot_blend. A sun gives irradiance E in W/m² on a surface facing it, either from
-// one direction (angle 0) or from a small cone of uniform radiance. Area lights are emissive
-// triangles (two-sided, as an emission shader on a mesh in Cycles), and the world is a constant
-// radiance from every direction.
+// Lights as Cycles 3.4 has them (K/light/light.h), in Blender's units.
+// - Point and spot: radiant intensity I = P·colour/(4π) W/sr. With a radius r > 0 the light is a
+//   disk of radius r centred on the light and facing the shading point, of radiance I/(π r²)
+//   (Cycles' "sphere" light: soft shadows; camera and BSDF rays can hit it). A spot adds Cycles'
+//   cone mask from spot_size and spot_blend.
+// - Sun: irradiance E (W/m²). With an angle the directions fill a cone of half-angle angle/2,
+//   sampled as Cycles does, through a disk of radius tan(angle/2) at unit distance: the radiance
+//   is E·pdf(ω), so that every light sample carries E.
+// - Area: a rectangle or an ellipse (Blender's square/rectangle and disk/ellipse) emitting from
+//   its front (the light's −Z) only, radiance P·colour/(4·area) (Cycles' eval_fac 1/(4A)).
+//   Rectangles are sampled by solid angle (Ureña et al. 2013, as Cycles), ellipses by area.
+// - Mesh: the emissive triangles of one mesh (an Emission shader), two-sided, sampled by area.
+// The world is not a Light: see environment.h.
 //
-// All kinds live in one tagged struct and are sampled through a switch, so the per-sample
-// path has no virtual calls.
+// All kinds live in one tagged struct and are sampled through a switch, so the per-sample path
+// has no virtual calls.
 #pragma once
 
 #include <cstdint>
@@ -17,9 +24,10 @@
 
 namespace bxdf::render {
 
-enum class LightType { Point, Spot, Sun, Area, World };
+enum class LightType { Point, Spot, Sun, Area, Mesh };
+enum class AreaShape { Rectangle, Ellipse };
 
-// One emissive triangle of an area light.
+// One emissive triangle of a mesh light.
 struct EmissiveTriangle {
   Vec3 p0, e1, e2;  // p0, p1 - p0, p2 - p0
   Vec3 normal;      // unit, cross(e1, e2) direction
@@ -27,40 +35,66 @@ struct EmissiveTriangle {
   float area = 0.0f;
 };
 
+// Ray visibility of a light, as Blender's object and light settings give it.
+struct LightVisibility {
+  bool camera = false;      // camera rays see it (Blender: object visible_camera; off for lights)
+  bool cast_shadow = true;  // its light samples are tested for occlusion
+  bool use_mis = true;      // BSDF rays can hit it (Cycles' Multiple Importance)
+};
+
 struct Light {
   LightType type = LightType::Point;
-  Vec3 position;           // point, spot
-  Vec3 direction{0, 0, -1};  // spot axis / direction sunlight travels (unit)
-  RGB intensity;           // point, spot: W/sr
-  RGB irradiance;          // sun: W/m² at normal incidence
-  RGB radiance;            // sun with a cone: E / (π sin²θmax); world: its radiance
+  LightVisibility visibility;
+  Vec3 position;             // point, spot; area: centre
+  Vec3 direction{0, 0, -1};  // spot axis; direction sunlight travels; area: emitting normal
+  RGB intensity;             // point, spot: W/sr
+  RGB irradiance;            // sun: W/m² at normal incidence
+  RGB radiance;              // point/spot with a radius, area: emitted radiance
+  float radius = 0.0f;       // point, spot: disk radius; sun: tan(angle / 2)
+  float inv_area = 1.0f;     // point/spot disk, sun disk, area: 1 / area (1 when the area is 0)
   float cos_half_spot = -1.0f;  // spot: cos(spot_size / 2)
   float spot_smooth = 0.0f;     // spot: (1 - cos_half_spot) · spot_blend
   float cos_sun_max = 1.0f;     // sun: cos(angle / 2); 1 for a delta sun
-  // Area: its triangles and their area CDF (cdf.back() == total area).
+  // Area: full edge vectors along the light's X and Y (size_x, size_y, scaled), and the shape.
+  Vec3 axis_u, axis_v;
+  AreaShape shape = AreaShape::Rectangle;
+  // Mesh: its triangles and their area CDF (cdf.back() == total area).
   std::vector<EmissiveTriangle> triangles;
   std::vector<float> cdf;
   float total_area = 0.0f;
 
   bool is_delta() const {
-    return type == LightType::Point || type == LightType::Spot ||
+    return ((type == LightType::Point || type == LightType::Spot) && radius == 0.0f) ||
            (type == LightType::Sun && cos_sun_max >= 1.0f);
+  }
+  // A light a ray can hit in space (not through the scene's geometry).
+  bool is_hittable() const {
+    return ((type == LightType::Point || type == LightType::Spot) && radius > 0.0f) ||
+           type == LightType::Area;
   }
 };
 
 // Builders; each throws ParameterError naming the parameter, value and valid range.
-Light point_light(const Vec3& position, const RGB& intensity_w_per_sr);
+// radius: metres, [0, inf).
+Light point_light(const Vec3& position, const RGB& intensity_w_per_sr, float radius = 0.0f);
 // Blender's point light: power P in W and a colour; I = P·colour/(4π).
-Light point_light_from_power(const Vec3& position, float power_w, const RGB& color);
+Light point_light_from_power(const Vec3& position, float power_w, const RGB& color,
+                             float radius = 0.0f);
 // spot_size: full cone angle in radians (0, π]; spot_blend in [0, 1].
 Light spot_light(const Vec3& position, const Vec3& direction, const RGB& intensity_w_per_sr,
-                 float spot_size, float spot_blend);
+                 float spot_size, float spot_blend, float radius = 0.0f);
 Light spot_light_from_power(const Vec3& position, const Vec3& direction, float power_w,
-                            const RGB& color, float spot_size, float spot_blend);
+                            const RGB& color, float spot_size, float spot_blend,
+                            float radius = 0.0f);
 // direction: the way the light travels (Blender's sun -Z axis); angle: full angular diameter
-// in radians, [0, π/2).
+// in radians, [0, π).
 Light sun_light(const Vec3& direction, const RGB& irradiance_w_per_m2, float angle);
-Light world_light(const RGB& radiance);
+// Blender's area light: centre, full edge vectors along its X and Y (size × the object's axes),
+// power P in W and a colour. It emits along `normal` (the light's −Z) only. Radiance
+// P·colour/(4·area), as Cycles.
+Light area_light_from_power(const Vec3& centre, const Vec3& axis_u, const Vec3& axis_v,
+                            const Vec3& normal, AreaShape shape, float power_w,
+                            const RGB& color);
 
 // Cycles 3.4's spot mask: cos α inside the cone, smoothed over the blend region, 0 outside.
 float spot_attenuation(const Light& spot, const Vec3& dir_from_light);
@@ -69,18 +103,30 @@ float spot_attenuation(const Light& spot, const Vec3& dir_from_light);
 struct LightSample {
   RGB radiance;    // arriving along -wi (for delta lights: intensity/d² or irradiance)
   Vec3 wi;         // unit, from the shading point towards the light
-  float distance = 0.0f;  // to the light point; infinity for sun and world
+  float distance = 0.0f;  // to the light point; infinity for the sun
   float pdf = 0.0f;       // solid angle density (1 for delta lights); 0 = no sample
 };
 
 LightSample sample_light(const Light& light, const Vec3& p, Point2 u);
 
-// Solid-angle density with which sample_light picks direction wi from p, for a direction that
-// reaches the light (hit point on an area light, or an escaped ray for sun and world).
-float area_light_pdf(const Light& area, const Vec3& p, const Vec3& hit_point,
+// What a ray from `origin` along unit `dir` finds on a hittable light before `tmax`: the
+// radiance it receives and the solid-angle density with which sample_light picks `dir`.
+struct LightHit {
+  float t = 0.0f;
+  RGB radiance;
+  float pdf = 0.0f;
+};
+bool intersect_light(const Light& light, const Vec3& origin, const Vec3& dir, float tmax,
+                     LightHit* hit);
+
+// Solid-angle density of sample_light for a mesh light hit at hit_point with normal hit_normal.
+float mesh_light_pdf(const Light& mesh, const Vec3& p, const Vec3& hit_point,
                      const Vec3& hit_normal);
-float environment_pdf(const Light& light, const Vec3& wi);
-// Radiance an escaped ray in direction wi receives from a sun (within its cone) or the world.
-RGB environment_radiance(const Light& light, const Vec3& wi);
+// A sun with an angle seen by an escaped ray: its radiance and the density of sample_light.
+bool sun_radiance(const Light& sun, const Vec3& dir, RGB* radiance, float* pdf);
+
+// Emitted power in W (average over RGB) that the light sampler weights lights by; a sun's
+// power counts what falls on a disk of the scene's bounding radius (pbrt's convention).
+float light_power(const Light& light, float scene_radius);
 
 }  // namespace bxdf::render

@@ -8,6 +8,18 @@
 
 namespace bxdf::render {
 
+// Ray visibility of a mesh (Blender's object ray visibility; shadow = visible_shadow).
+struct MeshVisibility {
+  bool camera = true;
+  bool shadow = true;
+};
+
+// Cycles' shadow terminator settings of the mesh's object (Blender: object.cycles).
+struct TerminatorOffsets {
+  float geometry = 0.1f;  // shadow_terminator_geometry_offset, [0, 1]
+  float shading = 0.0f;   // shadow_terminator_offset, [0, 1)
+};
+
 // Non-owning view of one mesh. Scene::add_mesh copies what it needs, so the arrays only have to
 // live for the duration of that call (a binding can pass numpy buffers with the GIL held).
 struct MeshView {
@@ -33,6 +45,8 @@ struct MeshView {
   // Texture space (location, size: 6 floats, object space) for Generated coordinates; null:
   // the object-space bounding box (Blender's automatic texture space).
   const float* texture_space = nullptr;
+  MeshVisibility visibility;
+  TerminatorOffsets terminator;
 };
 
 // An owning mesh, for meshes the renderer builds or loads itself.
@@ -42,6 +56,8 @@ struct Mesh {
   uint32_t material = 0;
   std::vector<std::vector<float>> uv_maps, tangents;  // as in MeshView (a tangent entry may be empty)
   std::vector<float> object_to_world, texture_space;  // empty: as null in MeshView
+  MeshVisibility visibility;
+  TerminatorOffsets terminator;
 
   size_t num_vertices() const { return positions.size() / 3; }
   size_t num_triangles() const { return indices.size() / 3; }
@@ -64,6 +80,8 @@ struct Mesh {
     v.tangents = tangent_pointers_.empty() ? nullptr : tangent_pointers_.data();
     v.object_to_world = object_to_world.empty() ? nullptr : object_to_world.data();
     v.texture_space = texture_space.empty() ? nullptr : texture_space.data();
+    v.visibility = visibility;
+    v.terminator = terminator;
     return v;
   }
 

@@ -10,10 +10,13 @@
 #include <vector>
 
 #include "bxdf/bsdf.h"
+#include "bxdf/render/environment.h"
+#include "bxdf/render/light_sampler.h"
 #include "bxdf/render/lights.h"
 #include "bxdf/render/material.h"
 #include "bxdf/render/mesh.h"
 #include "bxdf/render/ray.h"
+#include "bxdf/render/shadow_terminator.h"
 
 namespace bxdf::render {
 
@@ -47,9 +50,13 @@ class Scene {
   // Copies the mesh; returns its index. Throws ParameterError naming the array and the
   // offending entry (index out of range, NaN position, unknown material...).
   uint32_t add_mesh(const MeshView& mesh);
+  // Point, spot, sun and area lights (mesh lights come from emissive materials at commit).
   void add_light(Light light);
+  // A constant world, or one with an environment image (see environment.h).
   void set_world(const RGB& radiance);
-  // Builds the BVH and the light list (one area light per mesh with emissive triangles).
+  void set_world(EnvironmentSettings settings);
+  // Builds the BVH, the light list (one mesh light per mesh with emissive triangles) and the
+  // light sampler (by power).
   void commit();
 
   bool committed() const { return committed_; }
@@ -57,11 +64,18 @@ class Scene {
   size_t num_triangles() const;
   const std::vector<Material>& materials() const { return materials_; }
   const std::vector<Light>& lights() const { return lights_; }
-  const RGB& world() const { return world_; }
+  const Environment& world() const { return world_; }
+  const LightSampler& light_sampler() const { return light_sampler_; }
+  // Indices into lights() of the lights rays can hit (point/spot with a radius, area) and of
+  // suns with an angle (found by escaped rays).
+  const std::vector<uint32_t>& hittable_lights() const { return hittable_lights_; }
+  const std::vector<uint32_t>& wide_suns() const { return wide_suns_; }
+  float bounding_radius() const { return bounding_radius_; }
 
-  // Closest hit in [ray.tmin, ray.tmax].
-  bool intersect(const Ray& ray, Hit* hit) const;
-  // True when something blocks the segment origin + t·dir, t in (0, tmax).
+  // Closest hit in [ray.tmin, ray.tmax]; camera rays skip meshes invisible to the camera.
+  bool intersect(const Ray& ray, Hit* hit, bool camera_ray = false) const;
+  // True when something blocks the segment origin + t·dir, t in (0, tmax); meshes that do not
+  // cast shadows are skipped.
   bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;
   SurfacePoint surface_point(const Hit& hit) const;
 
@@ -83,6 +97,9 @@ class Scene {
   bool transmissive(uint32_t material) const { return material_eta_[material] != 0.0f; }
   // Index into lights() of the area light made from a mesh, or -1.
   int area_light_of_mesh(uint32_t mesh) const { return mesh_area_light_[mesh]; }
+  // The hit triangle's vertices and vertex normals; false when the mesh is flat-shaded.
+  bool smooth_triangle(const Hit& hit, SmoothTriangle* tri) const;
+  const TerminatorOffsets& terminator(uint32_t mesh) const { return meshes_[mesh].terminator; }
 
   // The Embree scene handle (RTCScene), for benchmarks that cast rays directly.
   void* embree_scene() const;
@@ -95,6 +112,8 @@ class Scene {
     std::vector<std::vector<float>> uv_maps, tangents;  // per corner
     std::array<float, 12> world_to_object{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     Vec3 texspace_location, texspace_inv_size{1, 1, 1};  // generated = (p − loc)·inv/2 + ½
+    MeshVisibility visibility;
+    TerminatorOffsets terminator;
   };
   struct EmbreeState;
   static void add_graph_attributes(const MeshView& mesh, const std::string& who, StoredMesh& s);
@@ -104,7 +123,10 @@ class Scene {
   std::vector<StoredMesh> meshes_;
   std::vector<Light> lights_;
   std::vector<int> mesh_area_light_;
-  RGB world_;
+  std::vector<uint32_t> hittable_lights_, wide_suns_;
+  Environment world_;
+  LightSampler light_sampler_;
+  float bounding_radius_ = 0.0f;
   bool committed_ = false;
   std::unique_ptr<EmbreeState> embree_;
 };

@@ -1,0 +1,30 @@
+// Cycles' two remedies for the shadow terminator of smooth-shaded low-poly meshes.
+// - Geometry offset (K/light/sample.h, shadow_ray_offset): a shadow ray leaves from the point
+//   lifted onto the parabolic surface the vertex normals describe, for light directions close
+//   to the terminator (how close: the object's offset, default 0.1), so that the flat triangle
+//   does not shadow points the smooth surface would light.
+// - Shading offset (K/closure/bsdf.h, shift_cos_in, from appleseed): the cosine of the incoming
+//   direction is rescaled so that the light falls off before the terminator.
+#pragma once
+
+#include "bxdf/math.h"
+
+namespace bxdf::render {
+
+// One triangle's vertices and vertex normals, and a point on it by barycentrics b1, b2.
+struct SmoothTriangle {
+  Vec3 v[3], n[3];
+};
+
+// The origin for a shadow ray towards unit `wi` from the point with barycentrics (b1, b2):
+// `p` lifted along the interpolated normal when the offset applies. ns, ng: the shading point's
+// shading and geometric normals (facing the viewer). *lifted tells whether it moved.
+Vec3 terminator_shadow_origin(const SmoothTriangle& tri, float b1, float b2, const Vec3& p,
+                              const Vec3& ns, const Vec3& ng, const Vec3& wi,
+                              float geometry_offset, bool* lifted);
+
+// Cycles' factor on f·cos for a shading offset s in [0, 1): the frequency multiplier
+// 1/(1 − s/2) stretches the angle; 1 when s is 0.
+float shading_offset_factor(float cos_in, float shading_offset);
+
+}  // namespace bxdf::render

@@ -1,0 +1,226 @@
+#include "bxdf/render/environment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "bxdf/params.h"
+#include "bxdf/render/image_io.h"
+
+namespace bxdf::render {
+
+namespace {
+
+void require_colour(const char* name, const RGB& c) {
+  if (!finite_nonnegative(c))
+    throw ParameterError(std::string("world ") + name + " (" + std::to_string(c.r) + ", " +
+                         std::to_string(c.g) + ", " + std::to_string(c.b) +
+                         ") must be in [0, inf) per channel");
+}
+
+int wrap(int i, int n) {
+  const int r = i % n;
+  return r < 0 ? r + n : r;
+}
+
+// Cycles' lower_bound over the CDF column of a (value, cdf) pair array with `count` cells.
+int find_interval(const float* pairs, int count, float u) {
+  int first = 0, n = count;
+  while (n > 0) {
+    const int step = n >> 1, middle = first + step;
+    if (pairs[2 * middle + 1] < u) {
+      first = middle + 1;
+      n -= step + 1;
+    } else {
+      n = step;
+    }
+  }
+  return std::clamp(first - 1, 0, count - 1);
+}
+
+// Fills (value, cdf) pairs of `count` cells from their values; entry `count` gets the integral
+// (mean of the values) as value and 1 as CDF. Returns the integral.
+float build_cdf(float* pairs, int count) {
+  pairs[1] = 0.0f;
+  for (int i = 1; i <= count; ++i) pairs[2 * i + 1] = pairs[2 * i - 1] + pairs[2 * i - 2] / count;
+  const float total = pairs[2 * count + 1];
+  pairs[2 * count] = total;
+  if (total > 0.0f)
+    for (int i = 1; i < count; ++i) pairs[2 * i + 1] /= total;
+  pairs[2 * count + 1] = 1.0f;
+  return total;
+}
+
+}  // namespace
+
+Point2 direction_to_equirect(const Vec3& dir) {
+  const float len = length(dir);
+  if (!(len > 0.0f)) return Point2(0.0f, 0.0f);
+  return Point2((kPi - std::atan2(dir.y, dir.x)) * kInv2Pi,
+                1.0f - std::acos(clamp(dir.z / len, -1.0f, 1.0f)) * kInvPi);
+}
+
+Vec3 equirect_to_direction(float u, float v) {
+  const float phi = kPi - 2.0f * kPi * u, theta = kPi * (1.0f - v);
+  const float s = std::sin(theta);
+  return Vec3(s * std::cos(phi), s * std::sin(phi), std::cos(theta));
+}
+
+EquirectImage load_equirect_image(const std::string& path) {
+  const Image rgba = read_image(path);  // top row first
+  EquirectImage img;
+  img.width = rgba.width;
+  img.height = rgba.height;
+  img.rgb.resize(size_t(img.width) * img.height * 3);
+  for (int y = 0; y < img.height; ++y) {
+    const float* src = &rgba.rgba[size_t(img.height - 1 - y) * img.width * 4];
+    float* dst = &img.rgb[size_t(y) * img.width * 3];
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const float v = src[4 * x + c];
+        dst[3 * x + c] = std::isfinite(v) && v > 0.0f ? v : 0.0f;
+      }
+  }
+  return img;
+}
+
+Environment::Environment(EnvironmentSettings settings) : s_(std::move(settings)) {
+  require_colour("color", s_.constant);
+  require_colour("texture weight", s_.weight);
+  for (float m : s_.matrix)
+    if (!std::isfinite(m)) throw ParameterError("world texture matrix must be finite");
+  if (s_.map_resolution < 0 || s_.map_resolution > 65536 || s_.map_resolution % 2 != 0)
+    throw ParameterError("world map_resolution " + std::to_string(s_.map_resolution) +
+                         " must be an even number in [0, 65536] (0 = automatic)");
+  const EquirectImage& img = s_.image;
+  has_image_ = img.width > 0 || img.height > 0 || !img.rgb.empty();
+  if (has_image_) {
+    if (img.width <= 0 || img.height <= 0 || img.rgb.size() != size_t(img.width) * img.height * 3)
+      throw ParameterError("world image has size " + std::to_string(img.width) + "x" +
+                           std::to_string(img.height) + " but " + std::to_string(img.rgb.size()) +
+                           " values; expected width*height*3");
+    for (float v : img.rgb)
+      if (!(v >= 0.0f) || !std::isfinite(v))
+        throw ParameterError("world image values must be in [0, inf)");
+    if (s_.weight.is_black()) has_image_ = false;
+  }
+  black_ = s_.constant.is_black() && !has_image_;
+  if (!has_image_) {
+    integral_ = 4.0f * kPi * s_.constant.average();
+    return;
+  }
+  build_distribution();
+}
+
+RGB Environment::lookup(float u, float v) const {
+  const EquirectImage& img = s_.image;
+  auto texel = [&](int x, int y) {
+    const float* p = &img.rgb[(size_t(wrap(y, img.height)) * img.width + wrap(x, img.width)) * 3];
+    return RGB(p[0], p[1], p[2]);
+  };
+  if (s_.interpolation == TextureInterpolation::Closest)
+    return texel(static_cast<int>(std::floor(u * img.width)),
+                 static_cast<int>(std::floor(v * img.height)));
+  // Cycles' bilinear lookup with Repeat extension: texel centres at (i + 0.5) / size.
+  const float fx = u * img.width - 0.5f, fy = v * img.height - 0.5f;
+  const float x0f = std::floor(fx), y0f = std::floor(fy);
+  const float tx = fx - x0f, ty = fy - y0f;
+  const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
+  return (texel(x0, y0) * (1.0f - tx) + texel(x0 + 1, y0) * tx) * (1.0f - ty) +
+         (texel(x0, y0 + 1) * (1.0f - tx) + texel(x0 + 1, y0 + 1) * tx) * ty;
+}
+
+RGB Environment::eval(const Vec3& dir) const {
+  if (!has_image_) return s_.constant;
+  const float* m = s_.matrix;
+  const Vec3 t(m[0] * dir.x + m[1] * dir.y + m[2] * dir.z + m[3],
+               m[4] * dir.x + m[5] * dir.y + m[6] * dir.z + m[7],
+               m[8] * dir.x + m[9] * dir.y + m[10] * dir.z + m[11]);
+  const Point2 uv = direction_to_equirect(t);  // Cycles normalises; (0, 0) for a zero vector
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return s_.constant;
+  return s_.constant + s_.weight * lookup(uv.x, uv.y);
+}
+
+void Environment::build_distribution() {
+  // Cycles' resolution rules: Manual R → R × R/2; Auto → the environment image's size.
+  if (s_.map_resolution > 0) {
+    map_w_ = s_.map_resolution;
+    map_h_ = s_.map_resolution / 2;
+  } else {
+    map_w_ = s_.image.width;
+    map_h_ = s_.image.height;
+  }
+  map_w_ = std::max(map_w_, 1);
+  map_h_ = std::max(map_h_, 1);
+  const int cw = map_w_ + 1;
+  // L on a grid at half-cell spacing (cell corners, edge midpoints and centres). Cycles takes
+  // each cell's centre; a cell here takes the largest of its nine points instead, so that the
+  // bilinear footprint of a bright texel (a sun) never lies in a cell the map thinks dark —
+  // that would leave BSDF sampling alone to find it, as fireflies.
+  const int gw = 2 * map_w_ + 1, gh = 2 * map_h_ + 1;
+  std::vector<float> grid(size_t(gw) * gh);
+  for (int j = 0; j < gh; ++j)
+    for (int i = 0; i < gw; ++i)
+      grid[size_t(j) * gw + i] =
+          eval(equirect_to_direction(float(i) / (2 * map_w_), float(j) / (2 * map_h_))).average();
+  std::vector<float> cond(size_t(cw) * map_h_ * 2);
+  marginal_.assign(size_t(map_h_ + 1) * 2, 0.0f);
+  double integral = 0.0;
+  for (int y = 0; y < map_h_; ++y) {
+    float* row = &cond[size_t(y) * cw * 2];
+    const float v = (y + 0.5f) / map_h_;
+    double centres = 0.0;
+    for (int x = 0; x < map_w_; ++x) {
+      float m = 0.0f;
+      for (int j = 2 * y; j <= 2 * y + 2; ++j)
+        for (int i = 2 * x; i <= 2 * x + 2; ++i) m = std::max(m, grid[size_t(j) * gw + i]);
+      row[2 * x] = m;
+      centres += grid[size_t(2 * y + 1) * gw + 2 * x + 1];
+    }
+    build_cdf(row, map_w_);
+    const float sin_theta = std::sin(kPi * v);
+    marginal_[2 * y] = row[2 * map_w_] * sin_theta;
+    integral += centres / map_w_ * sin_theta;
+  }
+  const float total = build_cdf(marginal_.data(), map_h_);
+  integral_ = static_cast<float>(integral / map_h_ * 2.0 * kPi * kPi);
+  if (!s_.importance_sample || !(total > 0.0f)) {
+    marginal_.clear();
+    return;
+  }
+  distribution_ = std::move(cond);
+}
+
+Vec3 Environment::sample(Point2 u, float* pdf) const {
+  *pdf = 0.0f;
+  if (distribution_.empty()) return Vec3(0, 0, 1);
+  const int cw = map_w_ + 1;
+  const int iv = find_interval(marginal_.data(), map_h_, u.y);
+  const float* mv = &marginal_[2 * iv];
+  const float dv = mv[3] > mv[1] ? (u.y - mv[1]) / (mv[3] - mv[1]) : 0.0f;
+  const float v = (iv + clamp(dv, 0.0f, 1.0f)) / map_h_;
+  const float* row = &distribution_[size_t(iv) * cw * 2];
+  const int iu = find_interval(row, map_w_, u.x);
+  const float du = row[2 * iu + 3] > row[2 * iu + 1]
+                       ? (u.x - row[2 * iu + 1]) / (row[2 * iu + 3] - row[2 * iu + 1])
+                       : 0.0f;
+  const float uu = (iu + clamp(du, 0.0f, 1.0f)) / map_w_;
+  const float sin_theta = std::sin(kPi * v);
+  const float denom = 2.0f * kPi * kPi * sin_theta * row[2 * map_w_] * marginal_[2 * map_h_];
+  if (sin_theta > 0.0f && denom > 0.0f) *pdf = row[2 * iu] * mv[0] / denom;
+  return equirect_to_direction(uu, v);
+}
+
+float Environment::pdf(const Vec3& dir) const {
+  if (distribution_.empty()) return 0.0f;
+  const Point2 uv = direction_to_equirect(dir);
+  const float sin_theta = std::sin(uv.y * kPi);
+  if (!(sin_theta > 0.0f)) return 0.0f;
+  const int iu = std::clamp(static_cast<int>(uv.x * map_w_), 0, map_w_ - 1);
+  const int iv = std::clamp(static_cast<int>(uv.y * map_h_), 0, map_h_ - 1);
+  const float* row = &distribution_[size_t(iv) * (map_w_ + 1) * 2];
+  const float denom = 2.0f * kPi * kPi * sin_theta * row[2 * map_w_] * marginal_[2 * map_h_];
+  return denom > 0.0f ? row[2 * iu] * marginal_[2 * iv] / denom : 0.0f;
+}
+
+}  // namespace bxdf::render

@@ -1,0 +1,249 @@
+// Cycles' lights: each kind's light samples integrate to the analytic irradiance (computed here
+// independently, by closed forms or double-precision quadrature), the density a BSDF ray finds
+// on a light equals the density of sampling that direction, area lights emit from the front
+// only, and the light sampler picks by power. Renders check the integrator's MIS, camera
+// visibility, cast_shadow and the terminator offset.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bxdf/registry.h"
+#include "bxdf/render/renderer.h"
+#include "bxdf/render/shapes.h"
+#include "bxdf/rng.h"
+
+using namespace bxdf;
+using namespace bxdf::render;
+
+namespace {
+
+// Irradiance at p on a surface with normal n: the mean of L·cos/pdf over light samples.
+double estimate_irradiance(const Light& light, const Vec3& p, const Vec3& n, int samples) {
+  PCG32 rng(7, 11);
+  double sum = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const LightSample s = sample_light(light, p, Point2(rng.uniform(), rng.uniform()));
+    if (!(s.pdf > 0.0f)) continue;
+    const double c = std::max(0.0f, dot(s.wi, n));
+    sum += s.radiance.average() * c / s.pdf;
+  }
+  return sum / samples;
+}
+
+// ∫ L cosθ cosθ' / d² dA over a planar light by the midpoint rule in double precision: the
+// light lies in the plane z = h above p = origin, normal facing down, shading normal +z.
+template <typename Inside>
+double quadrature_irradiance(double radiance, double h, double sx, double sy, Inside inside) {
+  const int n = 800;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = ((i + 0.5) / n - 0.5) * sx, y = ((j + 0.5) / n - 0.5) * sy;
+      if (!inside(x / (0.5 * sx), y / (0.5 * sy))) continue;
+      const double d2 = x * x + y * y + h * h;
+      sum += h * h / (d2 * d2);
+    }
+  return radiance * sum * (sx / n) * (sy / n);
+}
+
+// A sampled direction towards a hittable light must be found again by a ray, with the same pdf.
+void expect_hit_pdf_matches_sample_pdf(const Light& light, const Vec3& p) {
+  PCG32 rng(3, 5);
+  int checked = 0;
+  for (int i = 0; i < 200; ++i) {
+    const LightSample s = sample_light(light, p, Point2(rng.uniform(), rng.uniform()));
+    if (!(s.pdf > 0.0f)) continue;
+    LightHit h;
+    ASSERT_TRUE(intersect_light(light, p, s.wi, 1e30f, &h)) << i;
+    EXPECT_NEAR(h.t, s.distance, 1e-3f * s.distance);
+    EXPECT_NEAR(h.pdf, s.pdf, 2e-3f * s.pdf) << i;
+    EXPECT_NEAR(h.radiance.average(), s.radiance.average(), 1e-4f * s.radiance.average());
+    ++checked;
+  }
+  EXPECT_GT(checked, 150);
+}
+
+}  // namespace
+
+TEST(Lights, SphereLightIsCyclesFacingDiskOfIntensityOverPiRSquared) {
+  // Cycles: a disk of radius r facing the point, radiance I/(π r²). Straight below it at
+  // distance d, the irradiance is π L sin²α with tan α = r/d: I/(d² + r²).
+  const float d = 2.0f, r = 0.5f;
+  const Light l = point_light_from_power(Vec3(0, 0, d), 1000.0f, RGB(1.0f), r);
+  const double I = 1000.0 / (4.0 * M_PI);
+  EXPECT_NEAR(estimate_irradiance(l, Vec3(0, 0, 0), Vec3(0, 0, 1), 20000), I / (d * d + r * r),
+              2e-3 * I / (d * d));
+  EXPECT_FALSE(l.is_delta());
+  expect_hit_pdf_matches_sample_pdf(l, Vec3(0.3f, -0.2f, 0.0f));
+  // Radius 0 is the delta point light: I/d².
+  const Light p = point_light_from_power(Vec3(0, 0, d), 1000.0f, RGB(1.0f));
+  EXPECT_TRUE(p.is_delta());
+  EXPECT_NEAR(estimate_irradiance(p, Vec3(0, 0, 0), Vec3(0, 0, 1), 4), I / (d * d), 1e-4 * I);
+  EXPECT_THROW(point_light(Vec3(0, 0, 0), RGB(1.0f), -0.1f), ParameterError);
+}
+
+TEST(Lights, SpotLightWithRadiusKeepsItsConeMask) {
+  const Light s = spot_light(Vec3(0, 0, 2), Vec3(0, 0, -1), RGB(10.0f), 0.6f, 0.2f, 0.1f);
+  // Inside the cone's core the mask is the cosine to the axis, ~1 straight below.
+  const double e = estimate_irradiance(s, Vec3(0, 0, 0), Vec3(0, 0, 1), 20000);
+  EXPECT_NEAR(e, 10.0 / (4.0 + 0.01), 0.01);
+  // Far outside the cone nothing arrives.
+  EXPECT_EQ(estimate_irradiance(s, Vec3(3, 0, 0), Vec3(0, 0, 1), 1000), 0.0);
+  expect_hit_pdf_matches_sample_pdf(s, Vec3(0.05f, 0.0f, 0.0f));
+}
+
+TEST(Lights, SunAngleIsCyclesDiskAtUnitDistance) {
+  // Every sample carries E (radiance = E·pdf), so a surface facing the sun receives
+  // E·mean(cos θ) over the disk of radius R = tan(angle/2): E·2(√(1+R²) − 1)/R².
+  const float angle = 0.5f;
+  const Light sun = sun_light(Vec3(0, 0, -1), RGB(3.0f), angle);
+  const double R = std::tan(0.5 * angle);
+  const double expected = 3.0 * 2.0 * (std::sqrt(1.0 + R * R) - 1.0) / (R * R);
+  EXPECT_NEAR(estimate_irradiance(sun, Vec3(0, 0, 0), Vec3(0, 0, 1), 20000), expected, 2e-3);
+  // An escaped ray inside the cone sees the same radiance and pdf as the sample.
+  PCG32 rng(1, 2);
+  for (int i = 0; i < 50; ++i) {
+    const LightSample s = sample_light(sun, Vec3(0, 0, 0), Point2(rng.uniform(), rng.uniform()));
+    RGB le;
+    float pdf = 0.0f;
+    ASSERT_TRUE(sun_radiance(sun, s.wi, &le, &pdf));
+    EXPECT_NEAR(pdf, s.pdf, 1e-3f * s.pdf);
+    EXPECT_NEAR(le.r, s.radiance.r, 1e-3f * s.radiance.r);
+  }
+  RGB le;
+  float pdf;
+  EXPECT_FALSE(sun_radiance(sun, Vec3(0, 1, 0), &le, &pdf));
+}
+
+TEST(Lights, AreaLightShapesMatchQuadratureAndAreOneSided) {
+  const float h = 1.5f;
+  struct Case {
+    AreaShape shape;
+    float sx, sy;
+  };
+  for (const Case& c : {Case{AreaShape::Rectangle, 2.0f, 2.0f}, Case{AreaShape::Rectangle, 3.0f, 1.0f},
+                        Case{AreaShape::Ellipse, 2.0f, 2.0f}, Case{AreaShape::Ellipse, 3.0f, 1.0f}}) {
+    const bool round = c.shape == AreaShape::Ellipse;
+    const Light l = area_light_from_power(Vec3(0, 0, h), Vec3(c.sx, 0, 0), Vec3(0, c.sy, 0),
+                                          Vec3(0, 0, -1), c.shape, 100.0f, RGB(1.0f));
+    // Cycles' radiance: P/(4·area).
+    const double area = c.sx * c.sy * (round ? M_PI / 4 : 1.0);
+    EXPECT_NEAR(l.radiance.r, 100.0 / (4.0 * area), 1e-4);
+    const double truth = quadrature_irradiance(l.radiance.r, h, c.sx, c.sy, [&](double x, double y) {
+      return round ? x * x + y * y <= 1.0 : true;
+    });
+    EXPECT_NEAR(estimate_irradiance(l, Vec3(0, 0, 0), Vec3(0, 0, 1), 40000), truth, 4e-3 * truth)
+        << (round ? "ellipse " : "rectangle ") << c.sx << "x" << c.sy;
+    expect_hit_pdf_matches_sample_pdf(l, Vec3(0.7f, -0.4f, 0.0f));
+    // Behind the light: no samples, and rays from behind pass through.
+    EXPECT_EQ(estimate_irradiance(l, Vec3(0, 0, 3), Vec3(0, 0, -1), 100), 0.0);
+    LightHit hit;
+    EXPECT_FALSE(intersect_light(l, Vec3(0, 0, 3), Vec3(0, 0, -1), 1e30f, &hit));
+    EXPECT_TRUE(intersect_light(l, Vec3(0, 0, 0), Vec3(0, 0, 1), 1e30f, &hit));
+  }
+}
+
+TEST(Lights, SamplerPicksByPower) {
+  std::vector<Light> lights = {point_light_from_power(Vec3(0, 0, 1), 1000.0f, RGB(1.0f)),
+                               point_light_from_power(Vec3(0, 0, 1), 10.0f, RGB(1.0f)),
+                               point_light_from_power(Vec3(0, 0, 1), 0.0f, RGB(1.0f))};
+  const LightSampler sampler(lights, nullptr, 1.0f);
+  EXPECT_NEAR(sampler.probability(0), 1000.0f / 1010.0f, 1e-6f);
+  EXPECT_NEAR(sampler.probability(1), 10.0f / 1010.0f, 1e-6f);
+  EXPECT_EQ(sampler.probability(2), 0.0f);
+  int counts[3] = {0, 0, 0};
+  float p;
+  for (int i = 0; i < 101000; ++i) ++counts[sampler.sample((i + 0.5f) / 101000.0f, &p)];
+  EXPECT_NEAR(counts[1], 1000, 2);
+  EXPECT_EQ(counts[2], 0);
+}
+
+namespace {
+
+// A white Lambertian floor (z = 0, 20 m wide) seen from straight above by a narrow camera.
+struct Floor {
+  Scene scene;
+  CameraSettings camera;
+  RenderSettings settings;
+  Floor() {
+    ParamSet white;
+    white.set("reflectance", RGBValue{0.8, 0.8, 0.8});
+    scene.add_material(Material{{make("lambertian", white)}, RGB(0.0f)});
+    scene.add_mesh(make_quad(Vec3(-10, -10, 0), Vec3(20, 0, 0), Vec3(0, 20, 0), 0).view());
+    camera.camera_to_world = look_at(Vec3(0, 0, 4), Vec3(0, 0, 0), Vec3(0, 1, 0));
+    camera.lens_mm = 2000.0f;  // 7 cm across: the irradiance is constant over it within 0.1%
+    settings.width = settings.height = 8;
+    settings.samples_per_pixel = 256;
+    settings.max_bounces = 0;
+    settings.threads = 2;
+  }
+  double mean() {
+    scene.commit();
+    const Film film = render_scene(scene, camera, settings);
+    double sum = 0;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) {
+        float px[4];
+        film.pixel(x, y, px);
+        sum += px[0];
+      }
+    return sum / 64;
+  }
+};
+
+}  // namespace
+
+TEST(Lights, RenderedAreaLightMatchesQuadratureThroughBothStrategies) {
+  // MIS between light and BSDF sampling must add up to the irradiance (0.8/π · E); the light
+  // is invisible to the camera, which looks through it.
+  Floor f;
+  const float h = 1.0f;
+  const Light l = area_light_from_power(Vec3(0, 0, h), Vec3(1.5f, 0, 0), Vec3(0, 1.0f, 0),
+                                        Vec3(0, 0, -1), AreaShape::Ellipse, 50.0f, RGB(1.0f));
+  f.scene.add_light(l);
+  const double e = quadrature_irradiance(l.radiance.r, h, 1.5, 1.0,
+                                         [](double x, double y) { return x * x + y * y <= 1.0; });
+  EXPECT_NEAR(f.mean(), 0.8 / M_PI * e, 0.01 * 0.8 / M_PI * e);
+}
+
+TEST(Lights, CameraSeesAreaLightOnlyWhenVisible) {
+  for (bool visible : {false, true}) {
+    Floor f;
+    Light l = area_light_from_power(Vec3(0, 0, 2), Vec3(4, 0, 0), Vec3(0, 4, 0), Vec3(0, 0, 1),
+                                    AreaShape::Rectangle, 100.0f, RGB(1.0f));  // faces the camera
+    l.visibility.camera = visible;
+    f.scene.add_light(l);
+    const double m = f.mean();  // the floor is behind the light: it gets nothing
+    EXPECT_NEAR(m, visible ? 100.0 / (4.0 * 16.0) : 0.0, 1e-4) << visible;
+  }
+}
+
+TEST(Lights, CastShadowOffLetsLightThroughOccluders) {
+  for (bool cast : {true, false}) {
+    Floor f;
+    ParamSet grey;
+    grey.set("reflectance", RGBValue{0.5, 0.5, 0.5});
+    const uint32_t m = f.scene.add_material(Material{{make("lambertian", grey)}, RGB(0.0f)});
+    // A blocker between the floor and the light, invisible to the camera.
+    Mesh blocker = make_quad(Vec3(-2, -2, 2), Vec3(4, 0, 0), Vec3(0, 4, 0), m);
+    blocker.visibility.camera = false;
+    f.scene.add_mesh(blocker.view());
+    Light l = point_light(Vec3(0, 0, 3), RGB(9.0f));
+    l.visibility.cast_shadow = cast;
+    f.scene.add_light(l);
+    EXPECT_NEAR(f.mean(), cast ? 0.0 : 0.8 / M_PI * 1.0, 0.01) << cast;
+  }
+}
+
+TEST(Lights, WideSunIsSeenByTheCameraOnlyWhenVisible) {
+  for (bool visible : {false, true}) {
+    Floor f;
+    f.camera.camera_to_world = look_at(Vec3(0, 0, 1), Vec3(0, 0, 5), Vec3(0, 1, 0));  // looks up
+    Light sun = sun_light(Vec3(0, 0, -1), RGB(2.0f), radians(10.0f));
+    sun.visibility.camera = visible;
+    f.scene.add_light(sun);
+    // Straight into the sun's disk: radiance E·pdf = E / (π tan²(5°)) near its centre.
+    const double centre = 2.0 / (M_PI * std::pow(std::tan(radians(5.0f)), 2));
+    EXPECT_NEAR(f.mean(), visible ? centre : 0.0, 2e-3 * centre) << visible;
+  }
+}
