@@ -66,7 +66,7 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
 
     def render(self, depsgraph):
         if self.is_preview:
-            self._render(depsgraph, "preview")
+            render_report.record(self._render(depsgraph, "preview"))
             return
         global last_error, last_cancelled
         report = self._render(depsgraph, "final")
@@ -77,7 +77,7 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
         """Renders into the render result; returns the render_report.Report of this render (with
         `cancelled` set)."""
         scene = depsgraph.scene
-        report = render_report.Report("render", scene.name)
+        report = render_report.Report("preview" if purpose == "preview" else "render", scene.name)
         width, height = export.resolution(scene)
         result = self.begin_result(0, 0, width, height)
         cancelled = False

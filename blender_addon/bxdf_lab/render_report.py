@@ -12,9 +12,10 @@ Kept in Python, not in the .blend: a render's messages describe one run, not the
 import time
 from dataclasses import dataclass, field
 
-# What was rendered: F12 (or bpy.ops.render.render) and the viewport's Rendered mode. Material
-# previews are not recorded: they run on every edit and would hide the render's messages.
-KINDS = ("render", "viewport")
+# What was rendered: F12 (or bpy.ops.render.render), the viewport's Rendered mode and the Material
+# tab's preview. Each kind has its own last report, so that a preview (rendered on every edit)
+# never hides the last F12 render's messages; the panels show "render" and "viewport".
+KINDS = ("render", "viewport", "preview")
 
 
 @dataclass

@@ -9,7 +9,7 @@ class BXDFLAB_PG_render_settings(bpy.types.PropertyGroup):
                          soft_max=4096, max=1 << 20)
     preview_samples: IntProperty(name="Preview Samples",
                                  description="Samples per pixel of the Material tab's preview",
-                                 default=16, min=1, soft_max=256, max=1 << 16)
+                                 default=32, min=1, soft_max=256, max=1 << 16)
     viewport_samples: IntProperty(name="Viewport Samples",
                                   description="Samples per pixel of the viewport's Rendered mode "
                                               "(refined pass by pass)",

@@ -15,12 +15,14 @@ the region shows.
 """
 
 import threading
+import weakref
 
 import bpy
 import numpy as np
 
 from . import export, render_report, renderer
 
+_sessions = weakref.WeakSet()  # live sessions, for sessions()
 SENSOR_WIDTH = 36.0  # mm; any width does, the lens is derived for it
 REDRAW_INTERVAL = 0.1  # s between the timer's checks for a new pass
 
@@ -56,9 +58,10 @@ def view_camera(region_data, clip, width, height):
     }
 
 
-def relevant_update(depsgraph):
-    """Whether an edit changes what the render shows (a selection alone does not)."""
-    for update in depsgraph.updates:
+def relevant_update(updates):
+    """Whether an edit (a depsgraph's `updates`) changes what the render shows (a selection alone
+    does not)."""
+    for update in updates:
         if update.is_updated_geometry or update.is_updated_transform or update.is_updated_shading:
             return True
         if isinstance(update.id, (bpy.types.Material, bpy.types.World, bpy.types.Light,
@@ -141,6 +144,12 @@ class GPUDisplay:
         gpu.state.blend_set("NONE")
 
 
+def sessions():
+    """The viewports rendering now (Blender's engine instances are not reachable from Python;
+    scripts and the windowed tests look here)."""
+    return list(_sessions)
+
+
 def _tag_3d_views():
     for window in bpy.context.window_manager.windows:
         for area in window.screen.areas:
@@ -162,12 +171,15 @@ class ViewportSession:
         self.job_key = None
         self.restarts = 0
         self._drawn_version = None
+        _sessions.add(self)
 
     # ---- main thread: Blender's view_update and view_draw --------------------------------
 
-    def update(self, context, depsgraph):
-        """view_update: re-export when the edit matters (or on the first call)."""
-        if self.data is not None and not relevant_update(depsgraph):
+    def update(self, context, depsgraph, updates=None):
+        """view_update: re-export when the edit matters (or on the first call). `updates` defaults
+        to the depsgraph's, which Blender fills only while it calls view_update."""
+        updates = depsgraph.updates if updates is None else updates
+        if self.data is not None and not relevant_update(updates):
             return
         scene = depsgraph.scene
         try:
