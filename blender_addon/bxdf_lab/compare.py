@@ -112,14 +112,15 @@ class AddonsForRun:
             return True
         loaded, enabled = addon_utils.check(module)
         if not enabled:
-            if addon_utils.enable(module, default_set=False, handle_error=None) is None:
+            # default_set: render_povray reads its own entry in preferences.addons
+            if addon_utils.enable(module, default_set=True, handle_error=None) is None:
                 return False
             self.enabled.append(module)
         return True
 
     def restore(self):
         for module in reversed(self.enabled):
-            addon_utils.disable(module, default_set=False)
+            addon_utils.disable(module, default_set=True)
         self.enabled.clear()
 
 

@@ -109,8 +109,31 @@ def previews(material):
         }
 
 
+def showcase():
+    """For the README's screenshots: a gold sphere beside the cube, on a floor."""
+    from bxdf_lab import api
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=1.0, location=(2.6, 0.0, 0.0), segments=64, ring_count=32)
+    sphere = bpy.context.object
+    bpy.ops.object.shade_smooth()
+    gold = bpy.data.materials.new("Gold")
+    api.assign_preset(gold, "gold")
+    sphere.data.materials.append(gold)
+    bpy.ops.mesh.primitive_plane_add(size=20.0, location=(0.0, 0.0, -1.0))
+    floor = bpy.data.materials.new("Floor")
+    api.assign(floor, "oren_nayar", reflectance=(0.5, 0.5, 0.5), sigma=20.0)
+    bpy.context.object.data.materials.append(floor)
+    bpy.data.objects["Light"].data.energy = 1500.0
+    world = bpy.context.scene.world
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.25, 0.27, 0.3, 1.0)
+    bpy.context.scene.bxdf_lab_render.viewport_samples = 64
+    for obj in bpy.context.selected_objects:
+        obj.select_set(False)
+
+
 def viewport_steps():
     from bxdf_lab import viewport
+    if args.screenshots:
+        showcase()
     view = area("VIEW_3D")
     with bpy.context.temp_override(window=bpy.context.window, area=view, scene=bpy.context.scene):
         view.spaces.active.shading.type = "RENDERED"
