@@ -88,5 +88,9 @@ def show_in_image_editor(context, image):
         for area in window.screen.areas:
             if area.type == "IMAGE_EDITOR":
                 area.spaces.active.image = image
+                region = next(r for r in area.regions if r.type == "WINDOW")
+                with context.temp_override(window=window, area=area, region=region):
+                    bpy.ops.image.view_all(fit_view=True)
+                area.tag_redraw()
                 return True
     return False

@@ -226,9 +226,17 @@ def difference_numbers(a, b):
             "energy_ratio": float(a.sum() / total_b) if total_b > 0 else float("nan")}
 
 
-def _display(image):
-    """Linear → sRGB for showing (the EXRs stay linear)."""
-    rgb = np.clip(image[..., :3], 0.0, 1.0)
+def display_scale(images):
+    """One exposure for every image (so they stay comparable): the 99th percentile of all their
+    linear values maps to white."""
+    values = np.concatenate([i[..., :3].ravel() for i in images.values()])
+    top = float(np.percentile(values, 99)) if values.size else 1.0
+    return 1.0 / top if top > 0 else 1.0
+
+
+def _display(image, scale=1.0):
+    """Linear × scale → sRGB for showing (the EXRs stay linear)."""
+    rgb = np.clip(image[..., :3] * scale, 0.0, 1.0)
     return np.where(rgb <= 0.0031308, 12.92 * rgb, 1.055 * np.power(rgb, 1 / 2.4) - 0.055)
 
 
@@ -242,9 +250,12 @@ def write_figure(path, images, numbers):
     names = list(images)
     heat = "BXDF_LAB" in images and "CYCLES" in images
     columns = len(names) + (1 if heat else 0)
-    figure, axes = plt.subplots(1, columns, figsize=(3.2 * columns, 3.6), squeeze=False)
+    n_lines = len(numbers) + 1
+    text_height = 0.17 * n_lines + 0.1  # inches under the images for the numbers
+    figure, axes = plt.subplots(1, columns, figsize=(3.2 * columns, 2.6 + text_height), squeeze=False)
+    scale = display_scale(images)
     for ax, name in zip(axes[0], names):
-        ax.imshow(_display(images[name]))
+        ax.imshow(_display(images[name], scale))
         ax.set_title(ENGINE_NAMES.get(name, name))
         ax.axis("off")
     if heat:
@@ -257,8 +268,10 @@ def write_figure(path, images, numbers):
     lines = [f"{ENGINE_NAMES[a]} vs {ENGINE_NAMES[b]}: RMSE {n['rmse']:.4g}, "
              f"mean |diff| {n['mean_abs']:.4g}, energy ratio {n['energy_ratio']:.4f}"
              for (a, b), n in numbers.items()]
+    lines.append(f"Shown as linear radiance × {scale:.3g} (one exposure for all), sRGB; "
+                 "the difference in linear radiance")
     figure.text(0.5, 0.02, "\n".join(lines), ha="center", va="bottom", fontsize=9)
-    figure.tight_layout(rect=(0, 0.06 * max(1, len(lines)), 1, 1))
+    figure.tight_layout(rect=(0, text_height / (2.6 + text_height), 1, 1))
     figure.savefig(path, dpi=100)
     plt.close(figure)
 
@@ -288,7 +301,7 @@ def write_report(path, results, numbers, pairing_rows, options, figure_name):
     page = f"""<!DOCTYPE html><html><head><meta charset="utf-8"><title>BxDF Lab comparison</title>
 <style>body{{font-family:sans-serif;margin:2em;max-width:70em}} td,th{{border:1px solid #ccc;
 padding:.3em .6em;vertical-align:top}} table{{border-collapse:collapse;margin:1em 0}}
-.exact{{background:#e3f6e3}} .approximate{{background:#fff4d6}} .unsupported{{background:#fbe0e0}}</style>
+img{{max-width:100%}} .exact{{background:#e3f6e3}} .approximate{{background:#fff4d6}} .unsupported{{background:#fbe0e0}}</style>
 </head><body><h1>BxDF Lab, Cycles and POV-Ray</h1>
 <p>{esc(bpy.data.filepath or "unsaved scene")}, {time.strftime("%Y-%m-%d %H:%M")}: longest side
 {options.size} px, {options.samples} samples per pixel (BxDF Lab and Cycles). Linear EXRs are in

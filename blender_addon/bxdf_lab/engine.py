@@ -127,7 +127,9 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
             if cancelled and not report.errors:
                 # An error report is what stops Blender from writing the (empty) result of a
                 # cancelled render to disk (render.render(write_still=True)); a warning does not.
-                self.report({"ERROR"}, "BxDF Lab: render cancelled; nothing is written")
+                # A preview is cancelled whenever a newer one starts: nothing to tell.
+                if not self.is_preview:
+                    self.report({"ERROR"}, "BxDF Lab: render cancelled; nothing is written")
                 report.summary = "Cancelled; nothing was written"
             report.cancelled = cancelled
             # cancel=True discards the result, so a cancelled or failed render writes no file.

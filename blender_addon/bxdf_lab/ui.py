@@ -115,10 +115,9 @@ def draw_fit_report(layout, material):
         layout.label(text="Parameters changed since this fit", icon="ERROR")
 
 
-class BXDFLAB_PT_material_preview(bpy.types.Panel):
-    """The material preview, rendered by the BXDF_LAB engine on Blender's preview scene (open by
-    default: it is the quickest look at a model)."""
-    bl_label = "Preview"
+class MaterialPanel:
+    """A panel of the Material tab, shown for the engines in COMPAT_ENGINES (a mix-in: Blender
+    cannot call a registered Panel subclass of another registered Panel)."""
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
     bl_context = "material"
@@ -127,21 +126,19 @@ class BXDFLAB_PT_material_preview(bpy.types.Panel):
     @classmethod
     def poll(cls, context):
         return context.engine in cls.COMPAT_ENGINES and context.material is not None
+
+
+class BXDFLAB_PT_material_preview(MaterialPanel, bpy.types.Panel):
+    """The material preview, rendered by the BXDF_LAB engine on Blender's preview scene (open by
+    default: it is the quickest look at a model)."""
+    bl_label = "Preview"
 
     def draw(self, context):
         self.layout.template_preview(context.material)
 
 
-class BXDFLAB_PT_material(bpy.types.Panel):
+class BXDFLAB_PT_material(MaterialPanel, bpy.types.Panel):
     bl_label = "BxDF Lab"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
-    bl_context = "material"
-    COMPAT_ENGINES = {ENGINE}
-
-    @classmethod
-    def poll(cls, context):
-        return context.engine in cls.COMPAT_ENGINES and context.material is not None
 
     def draw(self, context):
         material = context.material
@@ -178,18 +175,11 @@ class BXDFLAB_PT_material(bpy.types.Panel):
         draw_last_renders(layout, width, material)
 
 
-class BXDFLAB_PT_material_cycles(bpy.types.Panel):
+class BXDFLAB_PT_material_cycles(MaterialPanel, bpy.types.Panel):
     """Compact: pick the BxDF Lab model and build the Cycles node tree closest to it."""
     bl_label = "BxDF Lab"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
-    bl_context = "material"
     bl_options = {"DEFAULT_CLOSED"}
     COMPAT_ENGINES = {"CYCLES"}
-
-    @classmethod
-    def poll(cls, context):
-        return context.engine in cls.COMPAT_ENGINES and context.material is not None
 
     def draw(self, context):
         settings = context.material.bxdf_lab

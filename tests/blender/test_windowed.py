@@ -50,3 +50,11 @@ def test_the_rendered_viewport_draws_and_restarts_on_an_edit(windowed):
     assert first["error"] == "" and first["samples"] == 32 and first["version"] >= 2
     assert second["error"] == "" and second["restarts"] >= 1 and second["changed"]
     assert second["first_cancelled_or_done"]
+
+
+def test_compare_renders_runs_as_render_jobs_and_shows_its_figure(windowed):
+    compare = windowed["compare"]
+    assert compare["started"] == ["RUNNING_MODAL"]
+    assert [(engine, ok) for engine, ok, _ in compare["results"]] == [
+        ("BXDF_LAB", True), ("CYCLES", True), ("POVRAY_RENDER", True)], compare["results"]
+    assert compare["shown"] == "BxDF Lab comparison" and compare["report"] and compare["restored"]

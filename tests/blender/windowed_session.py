@@ -158,6 +158,31 @@ def viewport_steps():
                                     "changed": bool(np.abs(second.image - first.image).max() > 0.01)}
 
 
+def compare_steps():
+    """Compare Renders with a window: render jobs from the modal loop, the status bar, the figure
+    in an Image Editor."""
+    from bxdf_lab import compare
+    import tempfile
+    folder = tempfile.mkdtemp(prefix="bxdf_compare_")
+    scene = bpy.context.scene
+    before = (scene.render.engine, scene.render.resolution_percentage, scene.render.filepath)
+    view = area("VIEW_3D")
+    view.type = "IMAGE_EDITOR"  # somewhere to show the result
+    with bpy.context.temp_override(window=bpy.context.window, area=area("IMAGE_EDITOR")):
+        started = bpy.ops.bxdf_lab.compare_renders("EXEC_DEFAULT", directory=folder, size=48, samples=4)
+    result["compare"] = {"started": list(started)}
+    yield from wait_for(lambda: compare.last_result.get("folder") == folder, "Compare Renders")
+    yield 0.5
+    shown = area("IMAGE_EDITOR").spaces.active.image
+    result["compare"].update(
+        results=compare.last_result["results"],
+        shown=shown.name if shown else "",
+        report=os.path.exists(compare.last_result["report"]),
+        restored=(scene.render.engine, scene.render.resolution_percentage, scene.render.filepath) == before)
+    screenshot("IMAGE_EDITOR", "compare_result.png")
+    area("IMAGE_EDITOR").type = "VIEW_3D"
+
+
 def steps():
     from bxdf_lab import api
     scene = bpy.context.scene
@@ -180,6 +205,7 @@ def steps():
     with bpy.context.temp_override(window=bpy.context.window, area=view, scene=bpy.context.scene):
         view.spaces.active.shading.type = "SOLID"  # stops the viewport render before quitting
     yield 0.5
+    yield from compare_steps()
 
 
 def run():
