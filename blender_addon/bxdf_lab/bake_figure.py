@@ -87,10 +87,22 @@ def show_in_image_editor(context, image):
     for window in window_manager.windows:
         for area in window.screen.areas:
             if area.type == "IMAGE_EDITOR":
+                image.size[:]  # loads the image, so that its size is known to the fit below
                 area.spaces.active.image = image
-                region = next(r for r in area.regions if r.type == "WINDOW")
-                with context.temp_override(window=window, area=area, region=region):
-                    bpy.ops.image.view_all(fit_view=True)
-                area.tag_redraw()
+                name = image.name
+                bpy.app.timers.register(lambda: _fit(name), first_interval=0.1)
                 return True
     return False
+
+
+def _fit(image_name):
+    """Zooms the Image Editors showing `image_name` to fit it (run once the editor has drawn the
+    new image: in the same step the fit uses the old image's size)."""
+    for window in bpy.context.window_manager.windows:
+        for area in window.screen.areas:
+            if area.type == "IMAGE_EDITOR" and area.spaces.active.image is not None \
+                    and area.spaces.active.image.name == image_name:
+                region = next(r for r in area.regions if r.type == "WINDOW")
+                with bpy.context.temp_override(window=window, area=area, region=region):
+                    bpy.ops.image.view_all(fit_view=True)
+    return None
