@@ -5,7 +5,7 @@ JOBS   ?= $(shell nproc)
 PYTHON := /usr/bin/python3
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps configure build test test-cpp test-python test-blender test-compare report bench clean install-addon
+.PHONY: all deps configure build test test-cpp test-python test-blender test-compare report bench clean install-addon addon-zip compare
 
 all: build
 
@@ -32,6 +32,15 @@ report: build
 
 install-addon: build
 	@bash tools/install-addon.sh $(BUILD)
+
+# Your own scene through BXDF_LAB, Cycles and POV-Ray: make compare BLEND=scene.blend
+compare: build
+	@test -n "$(BLEND)" || { echo "usage: make compare BLEND=FILE.blend"; exit 2; }
+	@BXDF_PYTHONPATH=$(CURDIR)/$(BUILD)/python $(PYTHON) -m compare run --blend "$(BLEND)"
+
+# $(BUILD)/bxdf_lab-<version>.zip: the add-on with the compiled module, for Preferences > Add-ons > Install.
+addon-zip: build
+	@bash tools/addon-zip.sh $(BUILD)
 
 bench: build
 	@bash tools/run-bench.sh $(BUILD)

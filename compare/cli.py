@@ -47,6 +47,11 @@ def build_parser():
                      help="change one material parameter in one engine only (a sensitivity "
                           "check: an exact pairing must then fail)")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run.add_argument("--blend", metavar="FILE.blend",
+                     help="render your own scene instead (BXDF_LAB, CYCLES, POV-Ray through the "
+                          "add-on's Compare Renders): figure, numbers, pairing labels, node coverage")
+    run.add_argument("--size", type=int, default=256,
+                     help="with --blend: longest side of the renders in pixels (default 256)")
     sub.add_parser("scenes", help="list the scenes")
     return parser
 
@@ -58,6 +63,12 @@ def main(argv=None):
             spec = make()
             truth = "analytic" if spec.has_analytic_truth() else "-"
             print(f"{name:28s} {truth:9s} {spec.description}")
+        return 0
+    if args.blend:
+        from . import blend_run
+        run_dir = blend_run.run(args.blend, out_root=args.out, size=args.size,
+                                samples=args.spp or 32, blender=args.blender, timeout=args.timeout)
+        print(f"report: {os.path.join(run_dir, 'index.html')}")
         return 0
     if args.spp is not None and args.spp < 2:
         raise SystemExit("--spp must be at least 2 (two half-sample renders)")

@@ -43,7 +43,11 @@ def lobe_plot(material, path):
         ax.text(0.5, 0.35, "delta lobe: f = 0\noff the specular directions", fontsize=7,
                 ha="center", transform=ax.transAxes)
     ax.tick_params(labelsize=6)
-    ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(-0.15, -0.1))
+    ax.set_thetagrids([-90, -45, 0, 45, 90])  # fewer angle labels: the default ones overlap
+    ax.yaxis.set_major_locator(matplotlib.ticker.MaxNLocator(3))
+    # Below the half-disc, where no curve is drawn.
+    ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, 0.02), ncol=len(VIEW_ANGLES_DEG),
+              frameon=False, handlelength=1.0, columnspacing=0.8)
     for k, deg in enumerate(VIEW_ANGLES_DEG):
         image = np.asarray(bxdf.bake_lobe_polar(model, resolution=96, theta_o=deg), float)
         lum = _luminance(image)

@@ -264,7 +264,21 @@ def _run_settings(settings):
             f"{_e(settings['threads_per_job'] or 'all')} thread(s) per render; spp "
             f"{_e(settings['spp'] or 'per scene')}, resolution {_e(resolution)}. "
             "Time / Cycles = the engine's render seconds (both half-sample renders, through "
-            "Blender's render operator, scene export included) / Cycles' (below 1: faster).</p>")
+            "Blender's render operator, scene export included) / Cycles' (below 1: faster).</p>"
+            + _overrides_html(settings.get("overrides") or {}))
+
+
+def _overrides_html(overrides):
+    """A run with --override renders some materials wrongly on purpose: the page says which."""
+    if not overrides:
+        return ""
+    items = "".join(f"<li>{_e(engine)}: material {_e(material)}: "
+                    + ", ".join(f"{_e(k)} = {_e(v)}" for k, v in params.items()) + "</li>"
+                    for engine, materials in overrides.items()
+                    for material, params in materials.items())
+    return ("<p class=\"note\"><b>This run used --override</b>: these parameters were changed in "
+            "one engine only (a sensitivity check; an exact pairing involving them should fail):"
+            f"</p><ul>{items}</ul>")
 
 
 def _render_times(summary):

@@ -14,6 +14,7 @@ PACKAGES=(
   nlohmann-json3-dev libtinyobjloader-dev
   python3-numpy python3-pytest python3-openimageio python3-matplotlib python3-distributed
   blender povray
+  xvfb xauth
 )
 
 missing=()

@@ -188,6 +188,8 @@ Every registered reflection model and its parameters, in registry order:
 - ``min``, ``max``: the valid range of a float (or of every RGB channel); ``None`` for other kinds
 - ``min_exclusive``, ``max_exclusive``: whether the bounds themselves are refused
 - ``unit``: e.g. ``"degrees"`` or ``""``;  ``doc``: one line
+- ``subtype`` (rgb only): ``"color"`` (a colour) or ``"per_channel"`` (three independent numbers,
+  e.g. an index of refraction per channel)
 - ``choices`` (enum only): the allowed strings
 - ``fields`` (list only): the parameter dicts of each list element (e.g. a Lafortune lobe)
 - ``when`` (only if conditional): ``{"param": name, "values": [...]}``: the parameter matters

@@ -160,6 +160,7 @@ py::dict spec_to_python(const ParamSpec& spec) {
   d["max_exclusive"] = spec.max_exclusive;
   d["unit"] = spec.unit;
   d["doc"] = spec.doc;
+  if (spec.kind == ParamKind::RGB) d["subtype"] = to_string(spec.subtype);
   if (spec.kind == ParamKind::Enum) d["choices"] = py::cast(spec.choices);
   if (spec.kind == ParamKind::List) {
     py::list fields;

@@ -27,22 +27,42 @@ _modules = []
 _fallback_classes = []
 
 
-class BXDFLAB_PT_missing_module(bpy.types.Panel):
-    """Shown instead of the add-on's UI when the compiled module `bxdf` does not import."""
+class MissingModulePanel:
+    """Shown instead of the add-on's UI when the compiled module `bxdf` does not import: first in
+    its tab, each line wrapped to the panel's width. A mix-in, not a Panel: Blender cannot call
+    a registered Panel subclass of another registered Panel (bpy_class_call: unable to get
+    Python class for RNA struct)."""
     bl_label = "BxDF Lab: module missing"
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
-    bl_context = "render"
+    bl_order = -1000  # above the stock panels
 
-    def draw(self, _context):
+    def draw(self, context):
+        import textwrap
         column = self.layout.column(align=True)
         column.alert = True
+        chars = max(20, int(getattr(context.region, "width", 300) / 7.0) - 4)
         for line in dependency.help_lines():
-            column.label(text=line)
+            for i, part in enumerate(textwrap.wrap(line, chars)):
+                column.label(text=part, icon="ERROR" if i == 0 else "BLANK1")
 
 
-class BXDFLAB_PT_missing_module_material(BXDFLAB_PT_missing_module):
+class BXDFLAB_PT_missing_module(MissingModulePanel, bpy.types.Panel):
+    bl_context = "render"
+
+
+class BXDFLAB_PT_missing_module_material(MissingModulePanel, bpy.types.Panel):
     bl_context = "material"
+
+
+class BXDFLAB_RenderEngine_missing_module(bpy.types.RenderEngine):
+    """Keeps "BxDF Lab" in the engine list (and scenes set to it) while the module is missing;
+    a render says why it cannot run."""
+    bl_idname = "BXDF_LAB"
+    bl_label = "BxDF Lab (module missing)"
+
+    def render(self, _depsgraph):
+        self.report({"ERROR"}, dependency.help_text())
 
 
 def _full_modules():
@@ -55,7 +75,8 @@ def register():
     if bxdf is None:
         # No traceback: a panel in the Render and Material tabs says what to do.
         print("BxDF Lab: " + dependency.help_text())
-        for cls in (BXDFLAB_PT_missing_module, BXDFLAB_PT_missing_module_material):
+        for cls in (BXDFLAB_PT_missing_module, BXDFLAB_PT_missing_module_material,
+                    BXDFLAB_RenderEngine_missing_module):
             bpy.utils.register_class(cls)
             _fallback_classes.append(cls)
         return

@@ -6,7 +6,11 @@ import (wrong Python, source checkout without a build); we detect it at register
 to do instead of raising a traceback.
 """
 
+import os
 import sys
+
+# Where the distributable zip (make addon-zip) puts its copy of the module.
+VENDOR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vendor")
 
 REQUIRED_PYTHON = (3, 11)
 REQUIRED_PYTHON_PATH = "/usr/bin/python3 (3.11)"
@@ -25,11 +29,27 @@ def try_import():
     try:
         import bxdf as module
     except Exception as exc:  # ImportError, or a broken .so raising anything else
-        import_error = f"{type(exc).__name__}: {exc}"
-        return None
+        module = _import_vendored()
+        if module is None:
+            import_error = f"{type(exc).__name__}: {exc}"
+            return None
     bxdf = module
     import_error = ""
     return bxdf
+
+
+def _import_vendored():
+    """The module shipped inside the add-on (make addon-zip), or None."""
+    if not os.path.isdir(os.path.join(VENDOR, "bxdf")):
+        return None
+    if VENDOR not in sys.path:
+        sys.path.append(VENDOR)
+    sys.modules.pop("bxdf", None)  # a failed import may have left a None entry
+    try:
+        import bxdf as module
+    except Exception:
+        return None
+    return module
 
 
 def require():

@@ -1,5 +1,10 @@
 """The render engine BXDF_LAB ("BxDF Lab"): export, render with progress and cancel, pixels back.
 
+Three kinds of render: F12 (render()), the Material tab's preview (render() with is_preview, on
+Blender's preview scene, at the preview sample count) and the viewport's Rendered mode
+(view_update/view_draw, handed to viewport.py). The Material Preview shading mode is EEVEE's
+(bl_use_eevee_viewport), drawing the material's node tree as Blender's own engines do.
+
 Blender swallows exceptions raised in render() (bpy.ops.render.render() still says FINISHED), so
 every error is reported with self.report({'ERROR'}, ...) (which the operator's caller sees as a
 RuntimeError) and recorded in `last_error` for scripts and tests; end_result() is always called, in a finally (a missing end_result followed by an EXR
@@ -11,9 +16,10 @@ import time
 import bpy
 import numpy as np
 
-from . import export, renderer
+from . import export, render_report, renderer, viewport
 
-# The last render's error message ("" after a successful render) and whether it was cancelled.
+# The last final render's error message ("" after a successful render) and whether it was
+# cancelled (material previews leave both alone); its warnings are in render_report.
 last_error = ""
 last_cancelled = False
 
@@ -36,13 +42,42 @@ def pixels_for_blender(image, width, height):
 class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
     bl_idname = "BXDF_LAB"
     bl_label = "BxDF Lab"
-    bl_use_preview = False
+    bl_use_preview = True
+    bl_use_eevee_viewport = True
     bl_use_postprocess = True
 
+    def __init__(self):
+        self.viewport = None  # a viewport.ViewportSession once the viewport renders
+
+    def __del__(self):
+        session = getattr(self, "viewport", None)
+        if session is not None:
+            session.stop()
+
+    def view_update(self, context, depsgraph):
+        if self.viewport is None:
+            self.viewport = viewport.ViewportSession()
+        self.viewport.update(context, depsgraph)
+
+    def view_draw(self, context, depsgraph):
+        if self.viewport is None:
+            self.view_update(context, depsgraph)
+        self.viewport.draw(context, depsgraph, self)
+
     def render(self, depsgraph):
+        if self.is_preview:
+            render_report.record(self._render(depsgraph, "preview"))
+            return
         global last_error, last_cancelled
-        last_error, last_cancelled = "", False
+        report = self._render(depsgraph, "final")
+        last_error, last_cancelled = report.errors[0] if report.errors else "", report.cancelled
+        render_report.record(report)
+
+    def _render(self, depsgraph, purpose):
+        """Renders into the render result; returns the render_report.Report of this render (with
+        `cancelled` set)."""
         scene = depsgraph.scene
+        report = render_report.Report("preview" if purpose == "preview" else "render", scene.name)
         width, height = export.resolution(scene)
         result = self.begin_result(0, 0, width, height)
         cancelled = False
@@ -51,46 +86,61 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
             self.update_stats("BxDF Lab", "Exporting scene")
             data = export.export_scene(depsgraph)
             for warning in data["warnings"]:
-                self.report({"WARNING"}, warning)
+                self._warn(report, warning)
             n_triangles = sum(len(m["triangles"]) for m in data["meshes"])
+            export_seconds = time.perf_counter() - started
             self.update_stats("BxDF Lab", f"Exported {n_triangles} triangles, "
                               f"{len(data['instance_mesh'])} instances in "
-                              f"{time.perf_counter() - started:.2f} s; rendering")
+                              f"{export_seconds:.2f} s; rendering")
             combined = result.layers[0].passes["Combined"]
 
             def on_progress(done, total, image=None):
                 nonlocal cancelled
                 self.update_progress(done / max(total, 1))
-                self.update_stats("BxDF Lab", f"Tile {done}/{total}")
+                self.update_stats("BxDF Lab", f"Rendering: {done} of {total} tiles "
+                                  f"({100.0 * done / max(total, 1):.0f}%)")
                 if image is not None:  # a partial result: show it while rendering
                     combined.rect.foreach_set(pixels_for_blender(image, width, height))
                     self.update_result(result)
                 cancelled = cancel_requested(self)
                 return not cancelled
 
-            image, stats = renderer.render(data, scene.bxdf_lab_render, on_progress)
+            settings = renderer.settings_dict(scene.bxdf_lab_render, purpose)
+            image, stats = renderer.render(data, settings, on_progress)
             for warning in stats.get("warnings", []):
-                self.report({"WARNING"}, warning)
+                self._warn(report, warning)
             if cancelled or stats.get("cancelled") or cancel_requested(self):
                 cancelled = True
             else:
                 combined.rect.foreach_set(pixels_for_blender(image, width, height))
                 self.update_progress(1.0)
-                self.update_stats("BxDF Lab", f"{stats.get('samples_per_pixel', 0)} samples per "
-                                  f"pixel in {stats.get('seconds', 0.0):.2f} s")
+                report.summary = (f"{width}×{height} pixels, {stats.get('samples_per_pixel', 0)} "
+                                  f"samples per pixel: export {export_seconds:.2f} s, render "
+                                  f"{stats.get('seconds', 0.0):.2f} s")
+                self.update_stats("BxDF Lab", report.summary)
         except Exception as exc:  # reported and recorded, never swallowed
-            last_error = f"{type(exc).__name__}: {exc}"
+            report.errors.append(f"{type(exc).__name__}: {exc}")
             self.report({"ERROR"}, f"BxDF Lab: {exc}")
-            print(f"BxDF Lab render failed: {last_error}")
+            print(f"BxDF Lab render failed: {report.errors[-1]}")
             cancelled = True
         finally:
-            if cancelled and not last_error:
+            if cancelled and not report.errors:
                 # An error report is what stops Blender from writing the (empty) result of a
                 # cancelled render to disk (render.render(write_still=True)); a warning does not.
-                self.report({"ERROR"}, "BxDF Lab: render cancelled; nothing is written")
-            last_cancelled = cancelled
+                # A preview is cancelled whenever a newer one starts: nothing to tell.
+                if not self.is_preview:
+                    self.report({"ERROR"}, "BxDF Lab: render cancelled; nothing is written")
+                report.summary = "Cancelled; nothing was written"
+            report.cancelled = cancelled
             # cancel=True discards the result, so a cancelled or failed render writes no file.
             self.end_result(result, cancel=cancelled)
+        return report
+
+    def _warn(self, report, warning):
+        if warning not in report.warnings:
+            report.warnings.append(warning)
+            if not self.is_preview:  # a preview's warnings would flood the status bar
+                self.report({"WARNING"}, warning)
 
 
 def register():

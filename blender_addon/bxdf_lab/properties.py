@@ -43,27 +43,30 @@ def attr_name(param_name):
     return param_name + "_" if param_name in _RESERVED else param_name
 
 
-def _label(param):
-    label = param.name.replace("_", " ").capitalize()
-    return f"{label} ({param.unit})" if param.unit else label
+PRECISION = 4  # decimals shown in a float field
+
+
+def _inside(bound, towards):
+    """The value a field shows nearest to an exclusive `bound`, on the valid side."""
+    step = 10.0 ** -PRECISION * max(1.0, abs(bound))
+    return bound + step if towards > 0 else bound - step
 
 
 def _limits(param, default):
     """Blender's (hard min, hard max, soft min, soft max) for a float or RGB parameter.
 
     Hard limits are the registry's bounds, so the UI cannot leave the valid range; an exclusive
-    bound is kept as the hard limit (the registry, not Blender, refuses that one value with a
-    message) and the slider stops just inside it."""
+    bound becomes the nearest value the field shows inside it (typing α = 0 gives 0.0001), so the
+    excluded value cannot be typed."""
     hard_min = max(param.min, -FLT_MAX)
     hard_max = min(param.max, FLT_MAX)
+    if param.min_exclusive and math.isfinite(param.min):
+        hard_min = _inside(param.min, +1)
+    if param.max_exclusive and math.isfinite(param.max):
+        hard_max = _inside(param.max, -1)
     scale = max(abs(default) * 10.0, 1.0)
-    soft_min = param.min if math.isfinite(param.min) else -scale
-    soft_max = param.max if math.isfinite(param.max) else max(scale, soft_min + 1.0)
-    inside = 1e-4 * (soft_max - soft_min)
-    if param.min_exclusive:
-        soft_min += inside
-    if param.max_exclusive:
-        soft_max -= inside
+    soft_min = hard_min if math.isfinite(param.min) else -scale
+    soft_max = hard_max if math.isfinite(param.max) else max(scale, soft_min + 1.0)
     return hard_min, hard_max, soft_min, soft_max
 
 
@@ -75,19 +78,23 @@ def _rgb_default(value):
 
 def make_property(param, owner_name):
     """A bpy.props descriptor for one registry parameter (not for list parameters)."""
-    common = {"name": _label(param), "description": param.tooltip()}
+    common = {"name": param.label, "description": param.tooltip()}
     if param.kind == "float":
         default = float(param.default)
         hmin, hmax, smin, smax = _limits(param, default)
         return FloatProperty(default=default, min=hmin, max=hmax, soft_min=smin, soft_max=smax,
-                             precision=4, **common)
+                             precision=PRECISION, **common)
     if param.kind == "rgb":
         default = _rgb_default(param.default)
         hmin, hmax, smin, smax = _limits(param, max(default))
-        return FloatVectorProperty(size=3, subtype="COLOR", default=default, min=hmin, max=hmax,
-                                   soft_min=smin, soft_max=smax, precision=4, **common)
+        # A colour is a swatch; per-channel numbers (η, k, lobe coefficients) are number fields.
+        return FloatVectorProperty(size=3, subtype="COLOR" if param.is_color else "NONE",
+                                   default=default, min=hmin, max=hmax, soft_min=smin,
+                                   soft_max=smax, precision=PRECISION, **common)
     if param.kind == "enum":
-        return EnumProperty(items=enum_items(param.choices), default=str(param.default), **common)
+        return EnumProperty(items=enum_items(param.choices,
+                                             {c: schema.enum_label(c) for c in param.choices}),
+                            default=str(param.default), **common)
     if param.kind == "bool":
         return BoolProperty(default=bool(param.default), **common)
     if param.kind == "string":
@@ -102,7 +109,7 @@ def _make_group(class_name, params, owner_name):
     for p in params:
         if p.kind == "list":
             element = _make_group(f"{class_name}_{p.name}", p.fields, f"{owner_name}.{p.name}")
-            annotations[attr_name(p.name)] = CollectionProperty(type=element, name=_label(p),
+            annotations[attr_name(p.name)] = CollectionProperty(type=element, name=p.label,
                                                                 description=p.tooltip())
         else:
             annotations[attr_name(p.name)] = make_property(p, owner_name)

@@ -25,18 +25,32 @@ def binding():
     return render
 
 
-def settings_dict(render_settings):
+# What each kind of render takes from scene.bxdf_lab_render: a final render all of it; the
+# material preview and the viewport their own sample count, fewer bounces, and one sample per pass
+# so that the first image comes at once and each pass refines it.
+PURPOSES = ("final", "preview", "viewport")
+QUICK_MAX_BOUNCES = 4
+
+
+def settings_dict(render_settings, purpose="final"):
+    if purpose not in PURPOSES:
+        raise ValueError(f"render purpose '{purpose}' is unknown; expected one of {PURPOSES}")
     s = render_settings
-    return {"samples": s.samples, "max_bounces": s.max_bounces,
-            "pixel_filter": s.pixel_filter.lower(), "filter_width": s.filter_width,
-            "threads": s.threads, "seed": s.seed}
+    settings = {"samples": s.samples, "max_bounces": s.max_bounces,
+                "pixel_filter": s.pixel_filter.lower(), "filter_width": s.filter_width,
+                "threads": s.threads, "seed": s.seed}
+    if purpose != "final":
+        settings["samples"] = s.preview_samples if purpose == "preview" else s.viewport_samples
+        settings["max_bounces"] = min(s.max_bounces, QUICK_MAX_BOUNCES)
+        settings["samples_per_pass"] = 1
+    return settings
 
 
-def render(scene_data, render_settings, on_progress):
-    """Renders `scene_data`; returns ((height, width, 4) float32 image with rows bottom-up, stats
-    dict with "cancelled", "warnings", "seconds", ...)."""
+def render(scene_data, settings, on_progress):
+    """Renders `scene_data` with `settings` (settings_dict's); returns ((height, width, 4) float32
+    image with rows bottom-up, stats dict with "cancelled", "warnings", "seconds", ...)."""
     render_fn = binding()
-    settings = settings_dict(render_settings)
+    settings = dict(settings)
     # Film › Transparent, as Cycles: camera rays that miss get no world and alpha 0.
     settings["transparent_background"] = bool(scene_data.get("film_transparent", False))
     return render_fn(scene_data, settings, on_progress, bottom_up=True, return_stats=True)

@@ -9,6 +9,21 @@ import math
 from dataclasses import dataclass, field
 
 KINDS = ("float", "rgb", "enum", "bool", "string", "list")
+# Units as Blender shows them next to a value.
+UNIT_SYMBOLS = {"degrees": "°"}
+# Words of enum identifiers that Blender spells out (Cycles' "Multiscatter GGX").
+_WORD_LABELS = {"multi": "Multiscatter"}
+
+
+def enum_label(identifier):
+    """Blender's name for an enum identifier: "ggx" → "GGX", "v_groove" → "V-Groove",
+    "ashikhmin_shirley" → "Ashikhmin-Shirley", "multi_ggx" → "Multiscatter GGX". A word without
+    a vowel is an acronym; words joined by "_" form one name (hyphenated), except after a
+    spelled-out prefix."""
+    words = identifier.split("_")
+    shown = [w.upper() if not set(w) & set("aeiouy") else _WORD_LABELS.get(w, w.capitalize())
+             for w in words]
+    return (" " if words[0] in _WORD_LABELS else "-").join(shown)
 
 
 @dataclass
@@ -23,6 +38,7 @@ class Param:
     unit: str = ""
     doc: str = ""
     choices: list = field(default_factory=list)
+    subtype: str = "color"                      # rgb kind: "color" or "per_channel"
     fields: list = field(default_factory=list)  # list kind: the schema of each element
     when_param: str = ""                        # shown only when when_param is in when_values
     when_values: list = field(default_factory=list)
@@ -44,6 +60,18 @@ class Param:
         if self.when_param:
             parts.append(f"Used when {self.when_param} is {' or '.join(self.when_values)}")
         return ". ".join(parts)
+
+    @property
+    def is_color(self):
+        """An RGB colour (drawn as a swatch), not three per-channel numbers (number fields)."""
+        return self.kind == "rgb" and self.subtype == "color"
+
+    @property
+    def label(self):
+        """Short enough for the default Properties width: title case, the unit as a symbol."""
+        label = self.name.replace("_", " ").title()
+        unit = UNIT_SYMBOLS.get(self.unit, self.unit)
+        return f"{label} ({unit})" if unit else label
 
     def relevant(self, values):
         """Whether this parameter matters given the current values (a name → value mapping)."""
@@ -105,6 +133,7 @@ def param_from_spec(spec):
         unit=str(spec.get("unit") or ""),
         doc=str(spec.get("doc") or ""),
         choices=[str(c) for c in (spec.get("choices") or [])],
+        subtype=str(spec.get("subtype") or "color"),
         fields=[param_from_spec(f) for f in (spec.get("fields") or [])],
         when_param=when_param,
         when_values=when_values,

@@ -1,29 +1,54 @@
 """Panels: the material (drawn from the registry schema), a compact one under Cycles, and the
 render settings. Stock panels that support BLENDER_RENDER also show for BXDF_LAB (as Cycles does)."""
 
+import re
+import textwrap
+
 import bpy
 
-from . import api, fit_report, node_panel, properties
+from . import api, fit_report, node_panel, properties, render_report
 from .engine import BXDFLAB_RenderEngine
 from .operators.presets import BXDFLAB_MT_presets
 
 ENGINE = BXDFLAB_RenderEngine.bl_idname
 
 
-def draw_params(layout, group, params):
-    """Every parameter of a model in registry order, hiding those whose `when` does not hold."""
+# Average width of a character of the UI font at scale 1, in pixels: how much text fits a line.
+CHAR_WIDTH = 7.0
+
+
+def wrapped_labels(layout, text, width, icon="NONE"):
+    """`text` as labels that fit `width` pixels (Blender cuts a long label with "…")."""
+    scale = bpy.context.preferences.view.ui_scale if bpy.context.preferences else 1.0
+    chars = max(20, int(width / (CHAR_WIDTH * scale)) - 4)
+    column = layout.column(align=True)
+    for i, line in enumerate(textwrap.wrap(text, chars) or [""]):
+        column.label(text=line, icon=icon if i == 0 else "BLANK1")
+    return column
+
+
+def region_width(context):
+    region = getattr(context, "region", None)
+    return region.width if region is not None else 300
+
+
+def draw_params(layout, group, params, bad=()):
+    """Every parameter of a model in registry order, hiding those whose `when` does not hold;
+    those named in `bad` are drawn highlighted (red)."""
     values = {p.name: getattr(group, properties.attr_name(p.name), None) for p in params
               if p.kind != "list"}
     for p in params:
         if not p.relevant(values):
             continue
         if p.kind == "list":
-            draw_list(layout, group, p)
+            draw_list(layout, group, p, bad)
         else:
-            layout.prop(group, properties.attr_name(p.name))
+            row = layout.row()
+            row.alert = p.name in bad
+            row.prop(group, properties.attr_name(p.name))
 
 
-def draw_list(layout, group, param):
+def draw_list(layout, group, param, bad=()):
     box = layout.box()
     row = box.row()
     row.label(text=param.name.replace("_", " ").capitalize())
@@ -34,17 +59,49 @@ def draw_list(layout, group, param):
         header.label(text=f"{i + 1}")
         remove = header.operator("bxdf_lab.list_remove", text="", icon="X")
         remove.param, remove.index = param.name, i
-        draw_params(sub, element, param.fields)
+        draw_params(sub, element, param.fields, bad)
 
 
-def draw_status(layout, material):
-    """The registry's verdict on the stored values: an error names the parameter and range."""
+def model_error(material):
+    """(message, names of the parameters it is about) of the registry's verdict on the stored
+    values, or ("", set()) when they are valid."""
     try:
         api.make(material)
     except ValueError as exc:
+        message = str(exc)
+        model = properties.MODELS[material.bxdf_lab.model]
+        names = {p.name for p in model.params} | {f.name for p in model.params for f in p.fields}
+        quoted = set(re.findall(r"'([A-Za-z_][A-Za-z0-9_]*)'", message))
+        words = set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", message))
+        return message, (names & quoted) or (names & words)
+    return "", set()
+
+
+def draw_status(layout, message, width):
+    """The registry's error, whole (it names the parameter, the value and the range)."""
+    if message:
         col = layout.column()
         col.alert = True
-        col.label(text=str(exc), icon="ERROR")
+        wrapped_labels(col, message, width, icon="ERROR")
+
+
+def draw_last_renders(layout, width, material=None):
+    """The last F12 and viewport renders' summaries, errors and warnings (those that name
+    `material` when one is given)."""
+    for kind, title in (("render", "Last render"), ("viewport", "Viewport")):
+        report = render_report.last(kind)
+        if report is None:
+            continue
+        messages = report.naming(material.name) if material is not None else report.messages()
+        if material is not None and not messages:
+            continue
+        box = layout.box()
+        box.label(text=f"{title} ({report.scene}): {report.summary}" if report.summary
+                  else f"{title} ({report.scene})", icon="RENDER_RESULT")
+        for level, text in messages:
+            col = box.column()
+            col.alert = level == "ERROR"
+            wrapped_labels(col, text, width, icon="ERROR" if level == "ERROR" else "INFO")
 
 
 def draw_fit_report(layout, material):
@@ -58,8 +115,9 @@ def draw_fit_report(layout, material):
         layout.label(text="Parameters changed since this fit", icon="ERROR")
 
 
-class BXDFLAB_PT_material(bpy.types.Panel):
-    bl_label = "BxDF Lab"
+class MaterialPanel:
+    """A panel of the Material tab, shown for the engines in COMPAT_ENGINES (a mix-in: Blender
+    cannot call a registered Panel subclass of another registered Panel)."""
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
     bl_context = "material"
@@ -68,6 +126,19 @@ class BXDFLAB_PT_material(bpy.types.Panel):
     @classmethod
     def poll(cls, context):
         return context.engine in cls.COMPAT_ENGINES and context.material is not None
+
+
+class BXDFLAB_PT_material_preview(MaterialPanel, bpy.types.Panel):
+    """The material preview, rendered by the BXDF_LAB engine on Blender's preview scene (open by
+    default: it is the quickest look at a model)."""
+    bl_label = "Preview"
+
+    def draw(self, context):
+        self.layout.template_preview(context.material)
+
+
+class BXDFLAB_PT_material(MaterialPanel, bpy.types.Panel):
+    bl_label = "BxDF Lab"
 
     def draw(self, context):
         material = context.material
@@ -80,39 +151,37 @@ class BXDFLAB_PT_material(bpy.types.Panel):
         row.prop(settings, "model")
         row.menu(BXDFLAB_MT_presets.bl_idname, text="", icon="PRESET")
         model = properties.MODELS[settings.model]
+        width = region_width(context)
         if model.doc:
-            layout.label(text=model.doc)
-        draw_params(layout, properties.model_group(settings), model.params)
-        draw_status(layout, material)
+            wrapped_labels(layout, model.doc, width)
+        error, bad = model_error(material)
+        draw_params(layout, properties.model_group(settings), model.params, bad)
+        draw_status(layout, error, width)
         col = layout.column(align=True)
         col.operator("bxdf_lab.bake_lobe_texture", icon="IMAGE_DATA")
         col.operator("bxdf_lab.add_lobe_mesh", icon="MESH_UVSPHERE")
         row = col.row(align=True)
-        row.operator("bxdf_lab.import_material", text="Import JSON", icon="IMPORT")
-        row.operator("bxdf_lab.export_material", text="Export JSON", icon="EXPORT")
-        row.operator("bxdf_lab.fit_measured", text="Fit to Measured", icon="GRAPH")
+        row.operator("bxdf_lab.import_material", text="Import", icon="IMPORT")
+        row.operator("bxdf_lab.export_material", text="Export", icon="EXPORT")
+        col.operator("bxdf_lab.fit_measured", text="Fit to Measured File", icon="GRAPH")
         row = col.row(align=True)
-        row.operator("bxdf_lab.set_up_cycles", icon="NODETREE")
-        row.operator("bxdf_lab.set_up_povray")
+        row.label(text="Set Up")
+        row.operator("bxdf_lab.set_up_cycles", text="Cycles", icon="NODETREE")
+        row.operator("bxdf_lab.set_up_povray", text="POV-Ray")
         draw_fit_report(layout, material)
-        for target in ("cycles", "pov"):
+        for target, name in (("cycles", "Cycles"), ("pov", "POV-Ray")):
             label = getattr(settings, f"{target}_label")
             if label:
-                layout.label(text=f"{target}: {label} — {getattr(settings, f'{target}_mapping')}")
+                wrapped_labels(layout, f"{name}: {label} — {getattr(settings, f'{target}_mapping')}",
+                               width, icon="NODETREE")
+        draw_last_renders(layout, width, material)
 
 
-class BXDFLAB_PT_material_cycles(bpy.types.Panel):
+class BXDFLAB_PT_material_cycles(MaterialPanel, bpy.types.Panel):
     """Compact: pick the BxDF Lab model and build the Cycles node tree closest to it."""
     bl_label = "BxDF Lab"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
-    bl_context = "material"
     bl_options = {"DEFAULT_CLOSED"}
     COMPAT_ENGINES = {"CYCLES"}
-
-    @classmethod
-    def poll(cls, context):
-        return context.engine in cls.COMPAT_ENGINES and context.material is not None
 
     def draw(self, context):
         settings = context.material.bxdf_lab
@@ -120,11 +189,17 @@ class BXDFLAB_PT_material_cycles(bpy.types.Panel):
         layout.use_property_split = True
         layout.prop(settings, "model")
         model = properties.MODELS[settings.model]
-        draw_params(layout.column(align=True), properties.model_group(settings), model.params)
-        draw_status(layout, context.material)
+        width = region_width(context)
+        error, bad = model_error(context.material)
+        draw_params(layout.column(align=True), properties.model_group(settings), model.params, bad)
+        draw_status(layout, error, width)
         layout.operator("bxdf_lab.set_up_cycles", icon="NODETREE")
         if settings.cycles_label:
-            layout.label(text=f"{settings.cycles_label}: {settings.cycles_mapping}")
+            wrapped_labels(layout, f"{settings.cycles_label}: {settings.cycles_mapping}", width)
+
+
+RENDER_SETTINGS = ("samples", "preview_samples", "viewport_samples", "viewport_pixel_size",
+                   "max_bounces", "pixel_filter", "filter_width", "threads", "seed")
 
 
 class BXDFLAB_PT_render(bpy.types.Panel):
@@ -142,11 +217,14 @@ class BXDFLAB_PT_render(bpy.types.Panel):
         settings = context.scene.bxdf_lab_render
         layout = self.layout
         layout.use_property_split = True
-        for name in ("samples", "max_bounces", "pixel_filter", "filter_width", "threads", "seed"):
+        for name in RENDER_SETTINGS:
             if name == "filter_width" and settings.pixel_filter == "PIXEL_CENTER":
                 continue
             layout.prop(settings, name)
-        layout.operator("bxdf_lab.compare_renders", icon="IMAGE_REFERENCE")
+        row = layout.row(align=True)
+        row.operator("bxdf_lab.compare_renders", icon="IMAGE_REFERENCE")
+        row.operator("bxdf_lab.open_compare_report", text="", icon="URL")
+        draw_last_renders(layout, region_width(context))
 
 
 # Stock panels shown for BXDF_LAB too: those for the old internal renderer and the material slots.
@@ -160,7 +238,8 @@ def _stock_panels():
             yield panel
 
 
-classes = (BXDFLAB_PT_material, BXDFLAB_PT_material_cycles, BXDFLAB_PT_render)
+classes = (BXDFLAB_PT_material_preview, BXDFLAB_PT_material, BXDFLAB_PT_material_cycles,
+           BXDFLAB_PT_render)
 
 
 def register():

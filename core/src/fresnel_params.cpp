@@ -5,8 +5,8 @@
 namespace bxdf {
 
 std::vector<ParamSpec> fresnel_params(const std::string& default_kind) {
-  ParamSpec eta = rgb_param("eta", {0.370, 0.370, 0.370}, 0.0, 10.0,
-                            "Conductor index of refraction eta per channel (default: the seed's gold)");
+  ParamSpec eta = per_channel(rgb_param("eta", {0.370, 0.370, 0.370}, 0.0, 10.0,
+                            "Conductor index of refraction eta per channel (default: the seed's gold)"));
   eta.min_exclusive = true;  // η = 0 would make the conductor a perfect mirror at every angle
   return {
       enum_param("fresnel", default_kind, {"none", "dielectric", "conductor"},
@@ -16,8 +16,8 @@ std::vector<ParamSpec> fresnel_params(const std::string& default_kind) {
       only_when(positive_param("eta_t", 1.5, 10.0, "", "Index of refraction of the dielectric"),
                 "fresnel", {"dielectric"}),
       only_when(eta, "fresnel", {"conductor"}),
-      only_when(rgb_param("k", {2.820, 2.820, 2.820}, 0.0, 20.0,
-                          "Conductor absorption coefficient k per channel (default: the seed's gold)"),
+      only_when(per_channel(rgb_param("k", {2.820, 2.820, 2.820}, 0.0, 20.0,
+                          "Conductor absorption coefficient k per channel (default: the seed's gold)")),
                 "fresnel", {"conductor"}),
   };
 }

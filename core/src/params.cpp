@@ -204,6 +204,15 @@ ParamSpec list_param(std::string name, std::vector<ParamSet> def, std::vector<Pa
   return s;
 }
 
+const char* to_string(RGBSubtype subtype) {
+  return subtype == RGBSubtype::Color ? "color" : "per_channel";
+}
+
+ParamSpec per_channel(ParamSpec spec) {
+  spec.subtype = RGBSubtype::PerChannel;
+  return spec;
+}
+
 ParamSpec only_when(ParamSpec spec, std::string param, std::vector<std::string> values) {
   spec.when_param = std::move(param);
   spec.when_values = std::move(values);

@@ -4,6 +4,7 @@ import math
 import os
 
 import bpy
+import mathutils
 import numpy as np
 import pytest
 
@@ -105,3 +106,33 @@ def test_transmission_lobes_are_baked_below_the_surface(material):
         assert bpy.ops.bxdf_lab.add_lobe_mesh(theta_in=0.0) == {"FINISHED"}
     z = np.array([v.co.z for v in bpy.data.objects[f"{material.name} lobe"].data.vertices])
     assert z.max() <= 1e-6 and z.min() < -0.5
+
+
+def test_the_lobe_mesh_sits_beside_the_active_object_selected_with_its_incident_arrow(material):
+    api.assign(material, "microfacet")
+    bpy.ops.mesh.primitive_cube_add(size=2.0, location=(0, 0, 0))  # the default cube
+    cube = bpy.context.object
+    cube.data.materials.append(material)
+    with bpy.context.temp_override(material=material):
+        assert bpy.ops.bxdf_lab.add_lobe_mesh(theta_in=30.0, size=1.0) == {"FINISHED"}
+    lobe = bpy.data.objects[f"{material.name} lobe"]
+    assert lobe.location.x >= 1.0 + 1.0  # clear of the cube (which ends at x = 1)
+    assert lobe.select_get() and bpy.context.view_layer.objects.active == lobe
+    assert not cube.select_get()
+    arrow = bpy.data.objects[f"{lobe.name} incident"]
+    assert arrow.parent == lobe and arrow.empty_display_type == "SINGLE_ARROW"
+    direction = arrow.matrix_basis.to_3x3() @ mathutils.Vector((0, 0, 1))
+    np.testing.assert_allclose(direction, (math.sin(math.radians(30)), 0, math.cos(math.radians(30))),
+                               atol=1e-6)
+
+
+def test_the_bake_shows_its_images_with_colour_scales_that_do_not_clip(material):
+    from bxdf_lab import bake_figure
+    api.assign(material, "microfacet", distribution="ggx", alpha_x=0.05, alpha_y=0.05)
+    _bake(material, theta_in=30.0, size=32)
+    figure = bpy.data.images[f"{material.name} lobes"]
+    assert figure.size[0] > 0 and figure.packed_file is not None
+    luminance = bake_figure._luminance(_pixels(bpy.data.images[f"{material.name} lobe 30deg"]))
+    scale = bake_figure._norm(luminance)
+    assert scale.vmax == pytest.approx(float(luminance.max()))  # the peak is the top of the scale
+    assert type(scale).__name__ == "LogNorm"  # a sharp GGX peak: logarithmic, the rest visible

@@ -1,46 +1,95 @@
-""""Compare Renders": each engine renders to EXR with fair settings, the images are put side by
-side, and the scene's settings are restored afterwards."""
+""""Compare Renders" on a two-material scene: each engine renders at the preview size into the
+chosen folder, the labelled figure becomes a Blender image, the HTML report gives each material's
+pairing label and why, and the scene's settings and add-ons are as they were."""
 
 import math
+import os
 
+import addon_utils
 import bpy
 import numpy as np
 
 from bxdf_lab import api, compare
 
 
-def test_compare_renders_every_available_engine_side_by_side(material, bxdf, tmp_path):
-    api.assign(material, "lambertian", reflectance=(0.6, 0.4, 0.2))
-    scene = bpy.context.scene
-    mesh = bpy.data.meshes.new("plane")
-    mesh.from_pydata([(-10, -10, 0), (10, -10, 0), (10, 10, 0), (-10, 10, 0)], [], [(0, 1, 2, 3)])
+def _plane(name, material, x):
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata([(x - 5, -5, 0), (x + 5, -5, 0), (x + 5, 5, 0), (x - 5, 5, 0)], [], [(0, 1, 2, 3)])
     mesh.materials.append(material)
-    scene.collection.objects.link(bpy.data.objects.new("plane", mesh))
+    bpy.context.scene.collection.objects.link(bpy.data.objects.new(name, mesh))
+
+
+def _two_material_scene():
+    scene = bpy.context.scene
+    paired = bpy.data.materials.new("Paired")
+    api.assign(paired, "lambertian", reflectance=(0.6, 0.4, 0.2))
+    with bpy.context.temp_override(material=paired):
+        assert bpy.ops.bxdf_lab.set_up_cycles() == {"FINISHED"}
+        assert bpy.ops.bxdf_lab.set_up_povray() == {"FINISHED"}
+    own_nodes = bpy.data.materials.new("Own Nodes")
+    own_nodes.use_nodes = True  # a Principled BSDF of its own, never set up from the model
+    api.assign(own_nodes, "oren_nayar", sigma=20.0)
+    _plane("left", paired, -5)
+    _plane("right", own_nodes, 5)
     sun = bpy.data.lights.new("sun", "SUN")
     sun.energy, sun.angle = math.pi, 0.0
     scene.collection.objects.link(bpy.data.objects.new("sun", sun))
     cam = bpy.data.objects.new("cam", bpy.data.cameras.new("cam"))
-    cam.location = (0, 0, 5)
+    cam.location = (0, 0, 12)
     scene.collection.objects.link(cam)
     scene.camera = cam
-    scene.render.resolution_x = scene.render.resolution_y = 8
+    scene.render.resolution_x, scene.render.resolution_y = 640, 320
     scene.render.resolution_percentage = 100
-    scene.bxdf_lab_render.samples = 4
-    with bpy.context.temp_override(material=material):
-        assert bpy.ops.bxdf_lab.set_up_cycles() == {"FINISHED"}
-        assert bpy.ops.bxdf_lab.set_up_povray() == {"FINISHED"}
-    before = (scene.render.engine, scene.render.filepath, scene.cycles.samples, material.use_nodes)
+    return scene, paired, own_nodes
 
-    results, image = compare.compare(scene, str(tmp_path))
 
-    assert results["CYCLES"][0] and results["POVRAY_RENDER"][0], results
-    assert results["BXDF_LAB"][0] == hasattr(bxdf, "render"), results
-    rendered = [e for e in compare.ENGINES if results[e][0]]
-    assert tuple(image.size) == (8 * len(rendered), 8)
-    pixels = np.empty(8 * 8 * len(rendered) * 4, dtype=np.float32)
-    image.pixels.foreach_get(pixels)
-    pixels = pixels.reshape(8, 8 * len(rendered), 4)[:, :, :3]
-    # a Lambertian plane under a sun of irradiance π straight above: radiance = R
-    np.testing.assert_allclose(pixels.reshape(-1, 3), np.broadcast_to((0.6, 0.4, 0.2), (pixels.size // 3, 3)),
-                               rtol=5e-3, atol=5e-4)
-    assert (scene.render.engine, scene.render.filepath, scene.cycles.samples, material.use_nodes) == before
+def test_compare_renders_a_two_material_scene_into_a_labelled_result(tmp_path, bxdf):
+    scene, paired, own_nodes = _two_material_scene()
+    povray_was_enabled = addon_utils.check("render_povray")[1]
+    before = (scene.render.engine, scene.render.filepath, scene.render.resolution_percentage,
+              scene.cycles.samples, scene.bxdf_lab_render.samples, paired.use_nodes)
+    folder = str(tmp_path / "chosen")
+
+    assert bpy.ops.bxdf_lab.compare_renders(directory=folder, size=32, samples=4) == {"FINISHED"}
+
+    result = compare.last_result
+    assert [(e, ok) for e, ok, _ in result["results"]] == [(e, True) for e in compare.ENGINES], result
+    for engine_id in compare.ENGINES:  # at the preview size: 640×320 scaled to 32×16
+        image = compare.load_exr(os.path.join(folder, f"{engine_id.lower()}.exr"))
+        assert image.shape == (16, 32, 4), engine_id
+    figure = bpy.data.images[compare.RESULT_IMAGE]
+    assert figure.size[0] > 0 and os.path.exists(result["figure"])
+    # The paired Lambertian half: BxDF Lab and Cycles agree (exact, radiance = R); the whole
+    # image's energy agrees only as far as the unpaired half does.
+    numbers = result["numbers"][("BXDF_LAB", "CYCLES")]
+    assert numbers["rmse"] >= 0.0 and math.isfinite(numbers["energy_ratio"])
+    bxdf_image = compare.load_exr(os.path.join(folder, "bxdf_lab.exr"))
+    cycles_image = compare.load_exr(os.path.join(folder, "cycles.exr"))
+    np.testing.assert_allclose(bxdf_image[:, 2:14, :3], cycles_image[:, 2:14, :3], rtol=0.02, atol=2e-3)
+    np.testing.assert_allclose(bxdf_image[:, 2:14, :3].mean(axis=(0, 1)), (0.6, 0.4, 0.2), rtol=0.02)
+
+    labels = {p["material"]: p for p in result["pairings"]}
+    assert labels["Paired"]["CYCLES"][0] == "exact"
+    assert labels["Own Nodes"]["CYCLES"][0] == "unsupported"
+    assert "own node tree" in labels["Own Nodes"]["CYCLES"][1]
+    assert labels["Own Nodes"]["POVRAY_RENDER"][0] == "unsupported"
+    with open(result["report"], encoding="utf-8") as f:
+        page = f.read()
+    for text in ("Paired", "Own Nodes", "exact", "unsupported", "own node tree", "comparison.png",
+                 "Node coverage", "Principled BSDF", "ShaderNodeBsdfPrincipled"):
+        assert text in page, text
+    coverage = {p["material"]: p["coverage"] for p in result["pairings"]}
+    assert {n["status"] for n in coverage["Own Nodes"]} == {"unsupported"}
+    assert {n["status"] for n in coverage["Paired"]} == {"exact"}
+
+    after = (scene.render.engine, scene.render.filepath, scene.render.resolution_percentage,
+             scene.cycles.samples, scene.bxdf_lab_render.samples, paired.use_nodes)
+    assert after == before
+    assert addon_utils.check("render_povray")[1] == povray_was_enabled  # enabled for the run only
+
+
+def test_compare_renders_needs_a_folder():
+    _two_material_scene()
+    import pytest
+    with pytest.raises(RuntimeError, match="choose an output folder"):
+        bpy.ops.bxdf_lab.compare_renders(directory="")

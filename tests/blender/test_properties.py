@@ -21,14 +21,20 @@ def _check_property(group, spec):
         assert rna.type == "FLOAT" and rna.array_length == 0
         assert getattr(group, spec["name"]) == pytest.approx(spec["default"], rel=1e-6)
     if kind == "rgb":
-        assert rna.type == "FLOAT" and rna.array_length == 3 and rna.subtype == "COLOR"
+        colour = spec.get("subtype", "color") == "color"
+        assert rna.type == "FLOAT" and rna.array_length == 3
+        assert rna.subtype == ("COLOR" if colour else "NONE")  # per-channel numbers: number fields
         assert tuple(getattr(group, spec["name"])) == pytest.approx(tuple(spec["default"]), rel=1e-6)
     if kind in ("float", "rgb"):
-        for bound, hard in (("min", rna.hard_min), ("max", rna.hard_max)):
+        for bound, hard, inward in (("min", rna.hard_min, 1), ("max", rna.hard_max, -1)):
             if math.isfinite(spec[bound]):
-                assert hard == pytest.approx(spec[bound], abs=1e-6), (spec["name"], bound)
+                if spec.get(f"{bound}_exclusive"):  # the excluded value cannot be typed
+                    step = (hard - spec[bound]) * inward
+                    assert 0.0 < step <= 1.01e-4 * max(1.0, abs(spec[bound])), (spec["name"], bound)
+                else:
+                    assert hard == pytest.approx(spec[bound], abs=1e-6), (spec["name"], bound)
         if spec["unit"]:
-            assert spec["unit"] in rna.name
+            assert schema.UNIT_SYMBOLS.get(spec["unit"], spec["unit"]) in rna.name
     if kind == "enum":
         assert rna.type == "ENUM"
         assert list(rna.enum_items.keys()) == list(spec["choices"])
@@ -111,7 +117,7 @@ def test_generator_handles_every_kind_and_condition():
         for spec in SPECS:
             _check_property(group, spec)
         alpha = _rna(group, "alpha_x")
-        assert alpha.hard_min == 0.0 and alpha.soft_min > 0.0  # exclusive: slider stays inside
+        assert 0.0 < alpha.hard_min <= 1.01e-4 and alpha.soft_min > 0.0  # exclusive: stays inside
         assert "(0, inf)" in alpha.description and "Used when distribution is beckmann or ggx" in alpha.description
         values = {p.name: getattr(group, p.name) for p in params}
         assert params[1].relevant(values) and not params[2].relevant(values)

@@ -4,6 +4,7 @@ import sys
 
 import addon_utils
 import bpy
+import pytest
 
 from bxdf_lab import dependency
 
@@ -48,8 +49,23 @@ def test_without_the_module_a_panel_explains_which_python_and_command():
     dependency.bxdf = None
     try:
         assert addon_utils.enable("bxdf_lab", default_set=True, handle_error=None) is not None
-        assert _registered("BXDFLAB_PT_missing_module")
+        for tab in ("", "_material"):  # at the top of the Render and the Material tab
+            panel = getattr(bpy.types, "BXDFLAB_PT_missing_module" + tab)
+            assert panel.bl_order < 0
+            # Not a subclass of another registered panel (Blender could not call its draw).
+            assert not any(issubclass(panel, other) for other in bpy.types.Panel.__subclasses__()
+                           if other is not panel and other.__name__.startswith("BXDFLAB_"))
         assert not hasattr(bpy.types.Material, "bxdf_lab")
+        # The engine stays in the list and says why it cannot render.
+        engines = {e.bl_idname: e for e in bpy.types.RenderEngine.__subclasses__()}
+        assert "missing" in engines["BXDF_LAB"].bl_label
+        scene = bpy.context.scene
+        scene.camera = bpy.data.objects.new("cam", bpy.data.cameras.new("cam"))
+        scene.collection.objects.link(scene.camera)
+        scene.render.engine = "BXDF_LAB"
+        scene.render.resolution_x = scene.render.resolution_y = 8
+        with pytest.raises(RuntimeError, match="make install-addon"):
+            bpy.ops.render.render()
         text = dependency.help_text()
         assert "/usr/bin/python3" in text and "3.11" in text and "make install-addon" in text
         assert "Error: import of bxdf halted" in text  # the import's own message is shown

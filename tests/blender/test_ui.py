@@ -6,19 +6,21 @@ import math
 
 import bpy
 
-from bxdf_lab import properties, schema, ui
+import pytest
+
+from bxdf_lab import api, properties, schema, ui
 
 
 class RecordingLayout:
     """Stands in for bpy.types.UILayout: records what would be drawn."""
 
-    def __init__(self, log=None):
+    def __init__(self, log=None, alert=False):
         self.log = [] if log is None else log
-        self.alert = False
+        self.alert = alert  # inherited by child layouts, as in Blender
         self.use_property_split = False
 
     def prop(self, data, name, **_):
-        self.log.append(("prop", name))
+        self.log.append(("prop", name, self.alert))
 
     def label(self, text="", **_):
         self.log.append(("label", text, self.alert))
@@ -31,7 +33,7 @@ class RecordingLayout:
         self.log.append(("menu", idname))
 
     def _child(self, *_, **__):
-        return RecordingLayout(self.log)
+        return RecordingLayout(self.log, self.alert)
 
     row = column = box = _child
 
@@ -62,8 +64,8 @@ def test_a_broken_value_is_shown_as_an_error_in_the_panel(material):
     material.bxdf_lab.lambertian.reflectance = (0.5, 0.5, float("nan"))
     context = type("Context", (), {"material": material, "scene": bpy.context.scene})()
     for panel in (ui.BXDFLAB_PT_material, ui.BXDFLAB_PT_material_cycles):
-        errors = [e for e in _draw(panel, context) if e[0] == "label" and e[2]]
-        assert len(errors) == 1 and "reflectance" in errors[0][1]
+        errors = " ".join(e[1] for e in _draw(panel, context) if e[0] == "label" and e[2])
+        assert "reflectance" in errors and "Test Material" in errors
 
 
 def test_parameters_whose_condition_fails_are_hidden():
@@ -96,4 +98,75 @@ def test_parameters_whose_condition_fails_are_hidden():
 def test_render_panel_draws_the_settings():
     context = type("Context", (), {"scene": bpy.context.scene})()
     drawn = [e[1] for e in _draw(ui.BXDFLAB_PT_render, context) if e[0] == "prop"]
-    assert drawn == ["samples", "max_bounces", "pixel_filter", "filter_width", "threads", "seed"]
+    assert drawn == ["samples", "preview_samples", "viewport_samples", "viewport_pixel_size",
+                     "max_bounces", "pixel_filter", "filter_width", "threads", "seed"]
+
+
+def _rna(group, name):
+    return group.bl_rna.properties[properties.attr_name(name)]
+
+
+def test_colours_are_swatches_and_per_channel_numbers_are_number_fields(material):
+    settings = material.bxdf_lab
+    assert _rna(settings.microfacet, "reflectance").subtype == "COLOR"
+    assert _rna(settings.microfacet, "eta").subtype == "NONE"
+    assert _rna(settings.microfacet, "k").subtype == "NONE"
+    api.assign(material, "lafortune")
+    lobe = settings.lafortune.lobes[0]
+    for name in ("cx", "cy", "cz", "exponent"):
+        assert _rna(lobe, name).subtype == "NONE", name
+    assert _rna(settings.lafortune, "diffuse").subtype == "COLOR"
+    # A coefficient of -1.09 is kept and shown as the number it is.
+    lobe.cx = (-1.09, -1.09, -1.09)
+    assert tuple(lobe.cx) == pytest.approx((-1.09,) * 3)
+
+
+def test_labels_and_enum_names_read_as_blender_writes_them(material):
+    group = material.bxdf_lab.microfacet
+    names = {i.identifier: i.name for i in _rna(group, "distribution").enum_items}
+    assert names == {"blinn": "Blinn", "ashikhmin_shirley": "Ashikhmin-Shirley",
+                     "beckmann": "Beckmann", "ggx": "GGX"}
+    assert {i.name for i in _rna(group, "shadowing").enum_items} == {"V-Groove", "Smith"}
+    assert schema.enum_label("multi_ggx") == "Multiscatter GGX"
+    assert _rna(material.bxdf_lab.oren_nayar, "sigma").name == "Sigma (°)"
+    assert _rna(group, "alpha_x").name == "Alpha X"
+
+
+def test_an_exclusive_bound_cannot_be_typed(material):
+    group = material.bxdf_lab.microfacet
+    material.bxdf_lab.model = "microfacet"
+    group.alpha_x = 0.0  # (0, 10]: the field stops at the nearest value it shows inside
+    assert 0.0 < group.alpha_x <= 1.01e-4
+    api.make(material)  # valid
+    group.eta = (0.0, 0.5, 0.5)
+    assert group.eta[0] > 0.0
+
+
+def test_a_bad_value_highlights_its_field_and_the_message_names_it(material):
+    api.assign(material, "microfacet", fresnel="conductor")
+    material.bxdf_lab.microfacet.k = (0.5, float("nan"), 0.5)  # only Python can store this
+    context = type("Context", (), {"material": material, "scene": bpy.context.scene,
+                                   "region": type("Region", (), {"width": 240})()})()
+    log = _draw(ui.BXDFLAB_PT_material, context)
+    highlighted = [e[1] for e in log if e[0] == "prop" and e[2]]
+    assert highlighted == ["k"]
+    error_lines = [e[1] for e in log if e[0] == "label" and e[2]]
+    assert "'k'" in " ".join(error_lines) or " k " in " ".join(error_lines)
+    assert all(len(line) <= 240 / ui.CHAR_WIDTH for line in error_lines)  # wrapped, not cut
+
+
+def test_the_last_render_report_is_shown_in_both_tabs(material):
+    from bxdf_lab import render_report
+    report = render_report.Report("render", "Scene", summary="done")
+    report.warnings += [f"material '{material.name}': node 'Noise Texture' is not translated",
+                        "light 'Lamp': radius rendered as 0"]
+    render_report.record(report)
+    try:
+        context = type("Context", (), {"material": material, "scene": bpy.context.scene})()
+        render_tab = " ".join(e[1] for e in _draw(ui.BXDFLAB_PT_render, context) if e[0] == "label")
+        material_tab = " ".join(e[1] for e in _draw(ui.BXDFLAB_PT_material, context) if e[0] == "label")
+        assert "Noise Texture" in render_tab and "'Lamp'" in render_tab
+        assert "Noise Texture" in material_tab
+        assert "'Lamp'" not in material_tab  # only what names this material
+    finally:
+        render_report.clear()

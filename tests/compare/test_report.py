@@ -83,3 +83,11 @@ def test_index_html_is_well_formed_and_every_image_exists(main_run):
             assert p["heatmap"] in checker.images
     assert any(src.startswith("report/materials/") for src in checker.images)
     assert "Render time against Cycles" in page and "BXDF_LAB / CYCLES" in page
+
+
+def test_a_run_with_override_says_so_in_the_page(main_run):
+    run_dir, _ = main_run
+    with open(os.path.join(run_dir, "index.html"), encoding="utf-8") as fh:
+        page = fh.read()
+    assert "This run used --override" in page
+    assert "POVRAY_RENDER: material lambert_grey: reflectance = [0.68, 0.68, 0.68]" in page

@@ -82,3 +82,33 @@ TEST(Registry, GreyNumberIsAcceptedForRGB) {
   BxDFPtr m = make("lambertian", p);
   EXPECT_EQ(m->params().rgb("reflectance")[1], 0.25);
 }
+
+// A UI draws a colour as a swatch and per-channel numbers as number fields: indices of
+// refraction and Lafortune's lobe coefficients are numbers (outside [0, 1]), reflectances colours.
+TEST(Registry, RGBParametersSayWhetherTheyAreColours) {
+  const auto subtype_of = [](const std::string& model, const std::string& param) {
+    for (const auto& info : models()) {
+      if (info.name != model) continue;
+      for (const auto& spec : info.params) {
+        if (spec.name == param) return spec.subtype;
+        for (const auto& field : spec.fields)
+          if (field.name == param) return field.subtype;
+      }
+    }
+    ADD_FAILURE() << model << "." << param << " not found";
+    return RGBSubtype::Color;
+  };
+  EXPECT_EQ(subtype_of("microfacet", "reflectance"), RGBSubtype::Color);
+  EXPECT_EQ(subtype_of("microfacet", "eta"), RGBSubtype::PerChannel);
+  EXPECT_EQ(subtype_of("specular_reflection", "k"), RGBSubtype::PerChannel);
+  EXPECT_EQ(subtype_of("lafortune", "diffuse"), RGBSubtype::Color);
+  for (const char* field : {"cx", "cy", "cz", "exponent"})
+    EXPECT_EQ(subtype_of("lafortune", field), RGBSubtype::PerChannel) << field;
+  // Every colour is a reflectance-like factor: its range lies in [0, 1].
+  for (const auto& info : models())
+    for (const auto& spec : info.params)
+      if (spec.kind == ParamKind::RGB && spec.subtype == RGBSubtype::Color) {
+        EXPECT_GE(spec.min, 0.0) << info.name << "." << spec.name;
+        EXPECT_LE(spec.max, 1.0) << info.name << "." << spec.name;
+      }
+}

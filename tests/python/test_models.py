@@ -25,6 +25,7 @@ def check_spec(spec):
     elif spec["kind"] == "rgb":
         assert len(spec["default"]) == 3
         assert all(spec["min"] <= c <= spec["max"] for c in spec["default"])
+        assert spec["subtype"] in ("color", "per_channel")
     else:
         assert spec["min"] is None and spec["max"] is None
     if spec["kind"] == "enum":
@@ -312,3 +313,12 @@ def test_n_samples_must_be_a_positive_int(bad):
         m.rho([0, 0, 1], bad)
     with pytest.raises(ValueError, match="n_samples"):
         m.rho_hh(bad)
+
+
+def test_models_say_which_rgb_parameters_are_colours():
+    specs = {s["name"]: s for s in bxdf.models()["microfacet"]}
+    assert specs["reflectance"]["subtype"] == "color"
+    assert specs["eta"]["subtype"] == "per_channel" and specs["k"]["subtype"] == "per_channel"
+    assert "subtype" not in specs["alpha_x"]  # only RGB parameters have one
+    lobe = {f["name"]: f for f in next(s for s in bxdf.models()["lafortune"] if s["name"] == "lobes")["fields"]}
+    assert {lobe[n]["subtype"] for n in ("cx", "cy", "cz", "exponent")} == {"per_channel"}

@@ -5,7 +5,7 @@ import os
 import bpy
 from bpy.props import BoolProperty, FloatProperty, IntProperty, StringProperty
 
-from .. import api, bake
+from .. import api, bake, bake_figure
 from ._common import active_material, poll_material
 
 
@@ -39,10 +39,17 @@ class BXDFLAB_OT_bake_lobe_texture(bpy.types.Operator):
                 path = (os.path.join(bpy.path.abspath(self.directory), bpy.path.clean_name(name) + ".exr")
                         if self.save_exr else "")
                 bake.to_image(name, pixels, path)
+            lobe, slice_, albedo = images.values()
+            figure_path = os.path.join(bpy.app.tempdir, bpy.path.clean_name(material.name) + "_lobes.png")
+            bake_figure.write(figure_path, f"{material.name}: {material.bxdf_lab.model}", lobe,
+                              f"Lobe at θo = {self.theta_in:g}°", slice_, albedo)
+            figure = bake_figure.show(f"{material.name} lobes", figure_path)
         except (ValueError, RuntimeError, OSError) as exc:
             self.report({"ERROR"}, str(exc))
             return {"CANCELLED"}
-        self.report({"INFO"}, "Baked " + ", ".join(images))
+        shown = bake_figure.show_in_image_editor(context, figure)
+        self.report({"INFO"}, f"Baked {', '.join(images)}; '{figure.name}' "
+                              + ("is shown in the Image Editor" if shown else "has their colour scales"))
         return {"FINISHED"}
 
 

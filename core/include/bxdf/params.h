@@ -80,6 +80,12 @@ class Value {
 enum class ParamKind { Float, RGB, Enum, Bool, String, List };
 const char* to_string(ParamKind kind);
 
+// What the three numbers of an RGB parameter are: a colour (a reflectance, shown as a swatch) or
+// three independent numbers per channel (an index of refraction, a lobe coefficient), which a UI
+// shows as number fields.
+enum class RGBSubtype { Color, PerChannel };
+const char* to_string(RGBSubtype subtype);
+
 // One parameter of one model, as declared by the model.
 struct ParamSpec {
   std::string name;
@@ -97,6 +103,7 @@ struct ParamSpec {
   // Relevant only when parameter `when_param` has one of `when_values` (UI hides it otherwise).
   std::string when_param;
   std::vector<std::string> when_values;
+  RGBSubtype subtype = RGBSubtype::Color;  // RGB only
 
   std::string range_string() const;  // "[0, 90] degrees", "(0, inf)", "{none, dielectric}"
 };
@@ -113,6 +120,7 @@ ParamSpec string_param(std::string name, std::string def, std::string doc);
 ParamSpec list_param(std::string name, std::vector<ParamSet> def, std::vector<ParamSpec> fields,
                      std::string doc);
 ParamSpec only_when(ParamSpec spec, std::string param, std::vector<std::string> values);
+ParamSpec per_channel(ParamSpec spec);  // an RGB parameter that is not a colour
 
 // Checks `given` against `specs`: fills defaults, coerces numbers to RGB (grey), refuses
 // unknown names, wrong kinds, NaN and out-of-range values with a ParameterError that names

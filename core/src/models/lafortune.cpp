@@ -110,10 +110,10 @@ ModelInfo lafortune_model() {
       list_param(
           "lobes", {default_lobe},
           {
-              rgb_param("cx", default_cxy, -100.0, 100.0, "Lobe coefficient Cx (on wo.x wi.x)"),
-              rgb_param("cy", default_cxy, -100.0, 100.0, "Lobe coefficient Cy (on wo.y wi.y)"),
-              rgb_param("cz", default_cz, -100.0, 100.0, "Lobe coefficient Cz (on wo.z wi.z)"),
-              rgb_param("exponent", default_n, 0.0, 10000.0, "Lobe exponent n"),
+              per_channel(rgb_param("cx", default_cxy, -100.0, 100.0, "Lobe coefficient Cx (on wo.x wi.x)")),
+              per_channel(rgb_param("cy", default_cxy, -100.0, 100.0, "Lobe coefficient Cy (on wo.y wi.y)")),
+              per_channel(rgb_param("cz", default_cz, -100.0, 100.0, "Lobe coefficient Cz (on wo.z wi.z)")),
+              per_channel(rgb_param("exponent", default_n, 0.0, 10000.0, "Lobe exponent n")),
           },
           "Lobes max(0, Cx wo.x wi.x + Cy wo.y wi.y + Cz wo.z wi.z)^n; Cx = Cy = -Cz is Phong. "
           "Each lobe's peak max(|Cx|, |Cy|, |Cz|)^n must stay <= 1e20"),

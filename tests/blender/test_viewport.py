@@ -1,0 +1,182 @@
+"""The viewport's Rendered mode driven through view_update/view_draw with a stand-in context
+(headless Blender has no 3D view): it renders progressively on a worker thread, draws each pass,
+restarts on an edit and on a view change (cancelling the old render), and its camera, derived from
+the region's matrices, gives the same image as the scene camera's F12 render."""
+
+import math
+import time
+
+import bpy
+import mathutils
+import numpy as np
+import pytest
+
+from bxdf_lab import api, export, render_report, renderer, viewport
+
+
+class RecordingDisplay:
+    """Stands in for viewport.GPUDisplay: keeps what would be drawn."""
+
+    def __init__(self):
+        self.drawn = []
+
+    def draw(self, engine, scene, job, region_size):
+        if job.image is not None:
+            self.drawn.append((job, job.version, job.image.shape, region_size))
+
+
+class StandInEngine:
+    def __init__(self):
+        self.stats = ""
+
+    def update_stats(self, _stats, info):
+        self.stats = info
+
+
+def _context(scene, width, height, view_matrix, window_matrix, perspective=True):
+    region = type("Region", (), {"width": width, "height": height})()
+    region_data = type("RegionView3D", (), {"view_matrix": view_matrix, "window_matrix": window_matrix,
+                                            "is_perspective": perspective})()
+    space = type("SpaceView3D", (), {"clip_start": 0.01, "clip_end": 1000.0})()
+    return type("Context", (), {"region": region, "region_data": region_data, "space_data": space,
+                                "scene": scene})()
+
+
+def _camera_view(scene, camera, width, height):
+    """The matrices of a 3D view looking through `camera`, as Blender computes them."""
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    window = camera.calc_matrix_camera(depsgraph, x=width, y=height)
+    return camera.matrix_world.inverted(), window
+
+
+@pytest.fixture
+def scene(material):
+    scene = bpy.context.scene
+    api.assign(material, "oren_nayar", sigma=20.0)
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12)
+    sphere = bpy.context.object
+    sphere.data.materials.append(material)
+    light = bpy.data.objects.new("lamp", bpy.data.lights.new("lamp", "POINT"))
+    light.data.energy, light.data.shadow_soft_size = 800.0, 0.0
+    light.location = (3, -3, 4)
+    scene.collection.objects.link(light)
+    camera = bpy.data.objects.new("cam", bpy.data.cameras.new("cam"))
+    camera.location, camera.rotation_euler = (0, -6, 1.5), (math.radians(78), 0, 0)
+    camera.data.shift_x, camera.data.shift_y = 0.08, -0.05
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    scene.render.engine = "BXDF_LAB"
+    s = scene.bxdf_lab_render
+    s.viewport_samples, s.viewport_pixel_size, s.max_bounces, s.seed = 4, "1", 2, 3
+    s.pixel_filter = "PIXEL_CENTER"
+    return scene
+
+
+def _wait(job, timeout=60.0):
+    assert job.wait(timeout), "the viewport render did not finish"
+
+
+def test_the_view_renders_progressively_and_restarts_on_an_edit_and_a_view_change(scene):
+    display, engine = RecordingDisplay(), StandInEngine()
+    session = viewport.ViewportSession(display=display, start_timer=False)
+    view, window = _camera_view(scene, scene.camera, 48, 32)
+    context = _context(scene, 48, 32, view, window)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    session.update(context, depsgraph, [])
+    session.draw(context, depsgraph, engine)
+    first = session.job
+    assert first is not None and session.restarts == 0
+    _wait(first)
+    session.draw(context, depsgraph, engine)
+    # One pass per sample; the binding hands over the newest pass when several finished at once.
+    assert first.error == "" and 2 <= first.version <= 4
+    assert display.drawn[-1][:3] == (first, first.version, (32, 48, 4))
+    assert "4 samples per pixel" in engine.stats
+
+    # Drawing again without a change keeps the render.
+    session.draw(context, depsgraph, engine)
+    assert session.job is first
+
+    # A selection alone changes nothing; a moved object restarts and cancels the old render.
+    session.update(context, depsgraph, [type("U", (), {
+        "is_updated_geometry": False, "is_updated_transform": False, "is_updated_shading": False,
+        "id": bpy.data.objects["Sphere"]})()])
+    session.draw(context, depsgraph, engine)
+    assert session.job is first
+    bpy.data.objects["Sphere"].location.x += 0.5
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    moved = type("U", (), {"is_updated_geometry": False, "is_updated_transform": True,
+                           "is_updated_shading": False, "id": bpy.data.objects["Sphere"]})()
+    session.update(context, depsgraph, [moved])
+    session.draw(context, depsgraph, engine)
+    second = session.job
+    assert second is not first and session.restarts == 1
+    assert first.cancelled
+    _wait(second)
+    assert not np.array_equal(second.image, first.image)  # the sphere moved
+
+    # A new view (the user orbits) restarts too.
+    turned = mathutils.Matrix.Rotation(math.radians(5), 4, "Z") @ view
+    session.draw(_context(scene, 48, 32, turned, window), depsgraph, engine)
+    assert session.job is not second and second.cancelled and session.restarts == 2
+    session.stop()
+    assert render_report.last("viewport").scene == scene.name
+
+
+def test_a_new_render_cancels_the_running_one_quickly(scene):
+    scene.bxdf_lab_render.viewport_samples = 4096  # would take minutes
+    session = viewport.ViewportSession(display=RecordingDisplay(), start_timer=False)
+    view, window = _camera_view(scene, scene.camera, 64, 64)
+    context = _context(scene, 64, 64, view, window)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    session.update(context, depsgraph, [])
+    session.draw(context, depsgraph, StandInEngine())
+    running = session.job
+    time.sleep(0.2)
+    started = time.perf_counter()
+    session.stop()
+    assert time.perf_counter() - started < 5.0
+    assert running.done and running.cancelled and running.error == ""
+
+
+def test_the_view_camera_matches_the_scene_camera(scene, tmp_path):
+    """Looking through the camera, the viewport's derived lens and shift give F12's image."""
+    width, height = 48, 32
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    scene.render.resolution_percentage = 100
+    view, window = _camera_view(scene, scene.camera, width, height)
+    region_data = type("R", (), {"view_matrix": view, "window_matrix": window,
+                                 "is_perspective": True})()
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    data = export.export_scene(depsgraph)
+    settings = renderer.settings_dict(scene.bxdf_lab_render, "viewport")
+    expected = renderer.render(data, settings, None)[0]
+    camera = viewport.view_camera(region_data, (0.01, 1000.0), width, height)
+    got = renderer.render(dict(data, camera=camera, resolution=(width, height)), settings, None)[0]
+    assert np.abs(got - expected).max() < 1e-4
+    assert expected[..., :3].max() > 0.05  # the sphere is in view and lit
+
+
+def test_an_orthographic_view_says_it_is_not_rendered(scene):
+    engine = StandInEngine()
+    session = viewport.ViewportSession(display=RecordingDisplay(), start_timer=False)
+    view, window = _camera_view(scene, scene.camera, 16, 16)
+    context = _context(scene, 16, 16, view, window, perspective=False)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    session.update(context, depsgraph, [])
+    session.draw(context, depsgraph, engine)
+    assert session.job is None and "orthographic" in engine.stats
+
+
+def test_a_broken_material_is_reported_in_the_viewport(scene, material):
+    material.bxdf_lab.oren_nayar.sigma = float("nan")
+    engine = StandInEngine()
+    session = viewport.ViewportSession(display=RecordingDisplay(), start_timer=False)
+    view, window = _camera_view(scene, scene.camera, 16, 16)
+    context = _context(scene, 16, 16, view, window)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    session.update(context, depsgraph, [])
+    session.draw(context, depsgraph, engine)
+    assert session.job is None and "sigma" in engine.stats
+    report = render_report.last("viewport")
+    assert report.naming(material.name) and "sigma" in report.errors[0]
