@@ -41,6 +41,8 @@ MaterialDesc material_from_json(const nlohmann::json& j, const std::string& wher
 void save_material(const MaterialDesc& material, const std::string& path);
 void save_material(const BxDF& model, const std::string& path, const std::string& name = "");
 MaterialDesc load_material_desc(const std::string& path);
+// make(m.model, m.params); a failure (e.g. a measured model's missing data file) names `where`.
+BxDFPtr make_material(const MaterialDesc& m, const std::string& where);
 BxDFPtr load_material(const std::string& path);
 
 }  // namespace bxdf::io
