@@ -29,7 +29,9 @@ bool is_conversion_error(const py::error_already_set& e) {
 }
 
 py::array as_numpy_array(py::handle obj, const std::string& name) {
-  static const py::object is_masked = py::module_::import("numpy.ma").attr("isMaskedArray");
+  // Leaked on purpose: a static py::object would be released after the interpreter is gone.
+  static const py::object& is_masked =
+      *new py::object(py::module_::import("numpy.ma").attr("isMaskedArray"));
   if (is_masked(obj).cast<bool>())
     refuse_argument(name, obj,
                     "is a numpy masked array; its mask would be ignored. Pass "

@@ -25,11 +25,12 @@ class Reader {
   Reader(std::string file, std::string base_dir) : file_(std::move(file)), base_(std::move(base_dir)) {}
 
   [[noreturn]] void fail(const std::string& path, const std::string& expected, const json& got) const {
-    throw SceneFileError(file_ + ": field '" + path + "': expected " + expected + ", got " +
-                         io::describe_json(got));
+    // Keys and strings from the file may hold control characters: the whole message is escaped.
+    throw SceneFileError(printable(file_ + ": field '" + path + "': expected " + expected + ", got " +
+                                   io::describe_json(got)));
   }
   [[noreturn]] void fail_message(const std::string& path, const std::string& message) const {
-    throw SceneFileError(file_ + ": field '" + path + "': " + message);
+    throw SceneFileError(printable(file_ + ": field '" + path + "': " + message));
   }
 
   const json& require(const json& obj, const std::string& path, const char* key) const {

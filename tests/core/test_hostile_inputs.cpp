@@ -16,6 +16,7 @@
 #include "bxdf/measured/measured_data.h"
 #include "bxdf/measured/merl.h"
 #include "bxdf/registry.h"
+#include "../scratch_folder.h"
 
 using namespace bxdf;
 namespace fs = std::filesystem;
@@ -36,31 +37,8 @@ void operator delete(void* p, size_t) noexcept { std::free(p); }
 
 namespace {
 
-class HostileInputs : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("bxdf_hostile_core_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& bytes) {
-    const std::string p = (dir_ / name).string();
-    std::ofstream(p, std::ios::binary) << bytes;
-    return p;
-  }
-  fs::path dir_;
-};
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ParameterError& e) {
-    return e.what();
-  }
-  return "";
-}
+using HostileInputs = bxdf::test_support::ScratchFolderTest;
+using bxdf::test_support::error_of;
 
 const char* kCornellHeader =
     "# num wls\n31\n\n# wls\n400 410 420 430 440 450 460 470 480 490 500 510 520 530 540 550 "

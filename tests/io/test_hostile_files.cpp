@@ -14,50 +14,22 @@
 #include "bxdf/io/atomic_file.h"
 #include "bxdf/io/json_text.h"
 #include "bxdf/io/material_json.h"
+#include "../scratch_folder.h"
 
 using namespace bxdf;
 namespace fs = std::filesystem;
 
 namespace {
 
-class HostileFiles : public ::testing::Test {
+class HostileFiles : public bxdf::test_support::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("bxdf_hostile_io_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(dir_, ec);
-  }
-  std::string write(const std::string& name, const std::string& bytes) {
-    const std::string p = (dir_ / name).string();
-    std::ofstream(p, std::ios::binary) << bytes;
-    return p;
-  }
   std::string load_error(const std::string& text) {
     const std::string p = write("m.json", text);
-    try {
-      io::load_material(p);
-    } catch (const ParameterError& e) {
-      return e.what();
-    }
-    return "";
-  }
-  static std::string read(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
+    return bxdf::test_support::error_of([&] { io::load_material(p); });
   }
   void write_atomically(const std::string& path, const std::string& text) {
     io::write_file_atomically(path, [&](const std::string& temp) { std::ofstream(temp) << text; });
   }
-  fs::path dir_;
 };
 
 const std::string kGood = R"({"model": "lambertian", "params": {"reflectance": 0.5}})";
@@ -204,7 +176,5 @@ TEST_F(HostileFiles, FailedWriteLeavesTheOldFileAndNoTemporary) {
                }),
                std::runtime_error);
   EXPECT_EQ(read(target), "old");
-  size_t files = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++files;
-  EXPECT_EQ(files, 1u);
+  EXPECT_EQ(files_in_folder(), 1u);
 }

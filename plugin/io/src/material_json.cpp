@@ -17,8 +17,8 @@ namespace {
 
 [[noreturn]] void bad_field(const std::string& where, const std::string& field,
                             const std::string& expected, const json& got) {
-  throw ParameterError(where + ": field '" + field + "': expected " + expected + ", got " +
-                       describe_json(got));
+  throw ParameterError(printable(where + ": field '" + field + "': expected " + expected +
+                                 ", got " + describe_json(got)));
 }
 
 const ParamSpec* find_spec(const std::vector<ParamSpec>& specs, const std::string& name) {
@@ -44,8 +44,8 @@ ParamSet record_from_json(const std::vector<ParamSpec>& specs, const json& j,
     const std::string sub = field.empty() ? it.key() : field + "." + it.key();
     const ParamSpec* spec = find_spec(specs, it.key());
     if (!spec)
-      throw ParameterError(where + ": field '" + sub + "': unknown parameter; known: " +
-                           join_names(specs));
+      throw ParameterError(printable(where + ": field '" + sub + "': unknown parameter; known: " +
+                                     join_names(specs)));
     out.set(it.key(), value_from_json(*spec, it.value(), where, sub));
   }
   return out;
@@ -113,7 +113,7 @@ ParamSet params_from_json(const std::string& model, const json& j, const std::st
   if (!info) {
     std::string known;
     for (const auto& m : models()) known += (known.empty() ? "" : ", ") + m.name;
-    throw ParameterError(where + ": field 'model': unknown model '" + model + "'; known: " + known);
+    throw ParameterError(where + ": field 'model': unknown model '" + printable(model) + "'; known: " + known);
   }
   const ParamSet given = record_from_json(info->params, j, where, "params");
   try {
@@ -155,8 +155,8 @@ MaterialDesc material_from_json(const json& j, const std::string& where) {
     bool ok = false;
     for (const char* k : known) ok = ok || it.key() == k;
     if (!ok)
-      throw ParameterError(where + ": field '" + it.key() +
-                           "': unknown; a material has format, version, name, model or preset, params");
+      throw ParameterError(printable(where + ": field '" + it.key() +
+                                     "': unknown; a material has format, version, name, model or preset, params"));
   }
   MaterialDesc m;
   if (j.contains("name")) {
@@ -171,7 +171,7 @@ MaterialDesc material_from_json(const json& j, const std::string& where) {
     const Preset* p = find_preset(j["preset"].get<std::string>());
     if (!p)
       throw ParameterError(where + ": field 'preset': unknown preset '" +
-                           j["preset"].get<std::string>() + "'; known: " + preset_names());
+                           printable(j["preset"].get<std::string>()) + "'; known: " + preset_names());
     m.model = p->model;
     base = p->params;
   } else {
