@@ -11,14 +11,15 @@ namespace bxdf::fuzz {
 namespace fs = std::filesystem;
 
 const std::string& scratch_folder() {
-  static const std::string folder = [] {
+  // Never destroyed: the exit handler that removes the folder runs after static destructors.
+  static const std::string* folder = [] {
     const fs::path base = fs::is_directory("/dev/shm") ? fs::path("/dev/shm") : fs::temp_directory_path();
     const fs::path dir = base / ("bxdf-fuzz-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::atexit([] { std::error_code ec; fs::remove_all(scratch_folder(), ec); });
-    return dir.string();
+    return new std::string(dir.string());
   }();
-  return folder;
+  return *folder;
 }
 
 std::string write_scratch(const std::string& name, const void* data, size_t size) {

@@ -21,7 +21,7 @@ for target in "$@"; do
     -timeout=30 -rss_limit_mb=2560 -max_len=65536 -print_final_stats=1 \
     -artifact_prefix="$findings/$target-" > "$log" 2>&1
   rc=$?
-  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | head -1 | grep -o '[0-9]*$')
   if [ "$rc" -ne 0 ]; then
     echo "!! fuzz $target: finding (exit $rc) after ${runs:-?} runs; see $log and $findings/"
     grep -m 5 -E 'ERROR|runtime error|SUMMARY' "$log"

@@ -147,15 +147,8 @@ TEST_F(HostileScene, PngWriteThatFailsIsReportedAndKeepsTheOldImage) {
   const auto old_size = fs::file_size(target);
   const std::string render = std::string(BXDF_RENDER_EXE) + " " + scene + " -o " + target + " --quiet";
   const std::string limited = "bash -c 'ulimit -f 2; trap \"\" XFSZ; exec " + render + "' 2>&1";
-  FILE* pipe = popen(limited.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) output.append(buf, n);
-  const int status = pclose(pipe);
-  ASSERT_TRUE(WIFEXITED(status)) << output;
-  EXPECT_EQ(WEXITSTATUS(status), 2) << output;
+  const auto [exit_code, output] = bxdf::test_support::run_shell(limited);
+  EXPECT_EQ(exit_code, 2) << output;
   EXPECT_NE(output.find("incomplete"), std::string::npos) << output;
   EXPECT_EQ(fs::file_size(target), old_size);
   EXPECT_EQ(read_image(target).width, 2);
