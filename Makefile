@@ -5,7 +5,7 @@ JOBS   ?= $(shell nproc)
 PYTHON := /usr/bin/python3
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps configure build test test-cpp test-python test-blender test-compare report bench clean install-addon addon-zip compare
+.PHONY: all deps configure build test test-cpp test-python test-blender test-compare report bench clean install-addon addon-zip compare fuzz test-sanitize
 
 all: build
 
@@ -44,6 +44,28 @@ addon-zip: build
 
 bench: build
 	@bash tools/run-bench.sh $(BUILD)
+
+# libFuzzer targets under ASan + UBSan, built with clang in their own folder; each runs for
+# FUZZ_SECONDS (make fuzz FUZZ_SECONDS=600) and any finding fails the target.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 120
+FUZZ_TARGETS ?= scene_json material_json cornell merl
+fuzz: deps
+	@CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBXDF_FUZZ=ON \
+	  -DBXDF_WERROR=OFF -DBXDF_BUILD_TESTS=OFF -DBXDF_BUILD_BENCH=OFF -DBXDF_BUILD_PYTHON=OFF \
+	  > $(FUZZ_BUILD).configure.log 2>&1 || (cat $(FUZZ_BUILD).configure.log; exit 1)
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
+	@bash tools/run-fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+# ctest and pytest with every library and the Python module under ASan + UBSan
+# (-fno-sanitize-recover: the first report fails the test), in its own build folder.
+SANITIZE_BUILD ?= build-sanitize
+test-sanitize: deps
+	@cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBXDF_SANITIZE=ON \
+	  -DBXDF_WERROR=OFF -DBXDF_BUILD_BENCH=OFF -DPython_EXECUTABLE=$(PYTHON) \
+	  > $(SANITIZE_BUILD).configure.log 2>&1 || (cat $(SANITIZE_BUILD).configure.log; exit 1)
+	@cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	@bash tools/run-sanitized-tests.sh $(SANITIZE_BUILD)
 
 clean:
 	rm -rf $(BUILD) $(BUILD).configure.log

@@ -12,6 +12,7 @@ PACKAGES=(
   pybind11-dev python3-dev
   libceres-dev libeigen3-dev
   nlohmann-json3-dev libtinyobjloader-dev
+  clang libclang-rt-dev
   python3-numpy python3-pytest python3-openimageio python3-matplotlib python3-distributed
   blender povray
   xvfb xauth

@@ -23,6 +23,38 @@ std::string shape_string(const py::array& a) {
 
 }  // namespace
 
+bool is_conversion_error(const py::error_already_set& e) {
+  return e.matches(PyExc_TypeError) || e.matches(PyExc_ValueError) ||
+         e.matches(PyExc_OverflowError) || e.matches(PyExc_IndexError);
+}
+
+py::array as_numpy_array(py::handle obj, const std::string& name) {
+  // Leaked on purpose: a static py::object would be released after the interpreter is gone.
+  static const py::object& is_masked =
+      *new py::object(py::module_::import("numpy.ma").attr("isMaskedArray"));
+  if (is_masked(obj).cast<bool>())
+    refuse_argument(name, obj,
+                    "is a numpy masked array; its mask would be ignored. Pass "
+                    "array.filled(value) or array.compressed() instead");
+  try {
+    return py::module_::import("numpy").attr("asarray")(obj);
+  } catch (py::error_already_set& e) {
+    if (!is_conversion_error(e)) throw;
+    refuse_argument(name, obj, "is not an array of real numbers");
+  }
+}
+
+std::string path_argument(py::handle path, const std::string& name) {
+  if (!py::isinstance<py::str>(path) && !py::hasattr(path, "__fspath__"))
+    refuse_argument(name, path, "is not a path (a str or os.PathLike)");
+  py::object p = py::module_::import("os").attr("fspath")(path);
+  if (!py::isinstance<py::str>(p)) refuse_argument(name, path, "is not a text path");
+  const std::string s = p.cast<std::string>();
+  if (s.empty()) refuse_argument(name, path, "is empty");
+  if (s.find('\0') != std::string::npos) refuse_argument(name, path, "contains a NUL character");
+  return s;
+}
+
 void refuse_argument(const std::string& name, py::handle value, const std::string& why) {
   throw ParameterError("argument '" + name + "' = " + short_repr(value) + " " + why);
 }
@@ -33,12 +65,7 @@ void refuse_argument(const std::string& name, double value, const std::string& w
 
 FloatArray real_array(py::handle obj, const std::string& name) {
   if (obj.is_none()) refuse_argument(name, obj, "is missing; expected an array of real numbers");
-  py::array arr;
-  try {
-    arr = py::module_::import("numpy").attr("asarray")(obj);
-  } catch (py::error_already_set&) {
-    refuse_argument(name, obj, "is not an array of real numbers");
-  }
+  py::array arr = as_numpy_array(obj, name);
   // Only real numbers convert: a silent cast of complex, bool, string or object arrays would
   // hide the caller's mistake.
   const char kind = arr.dtype().kind();
@@ -114,8 +141,9 @@ double finite_number(py::handle obj, const std::string& name) {
   double v;
   try {
     v = py::float_(py::reinterpret_borrow<py::object>(obj)).cast<double>();
-  } catch (py::error_already_set&) {
-    refuse_argument(name, obj, "is not a number");
+  } catch (py::error_already_set& e) {
+    if (!is_conversion_error(e)) throw;
+    refuse_argument(name, obj, e.matches(PyExc_OverflowError) ? "is too large for a float" : "is not a number");
   }
   if (!std::isfinite(v)) refuse_argument(name, obj, "is not finite");
   return v;
@@ -133,8 +161,11 @@ int int_in_range(py::handle obj, const std::string& name, long long lo, long lon
   // Python ints and numpy integers (operator.index), never floats or bools.
   if (obj.is_none() || py::isinstance<py::bool_>(obj) || !PyIndex_Check(obj.ptr()))
     refuse_argument(name, obj, "is not an integer; valid: " + range);
-  const long long v = PyLong_AsLongLong(py::reinterpret_steal<py::object>(PyNumber_Index(obj.ptr())).ptr());
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(obj.ptr()));
+  if (!index) throw py::error_already_set();  // e.g. KeyboardInterrupt inside __index__
+  const long long v = PyLong_AsLongLong(index.ptr());
   if (v == -1 && PyErr_Occurred()) {
+    if (!PyErr_ExceptionMatches(PyExc_OverflowError)) throw py::error_already_set();
     PyErr_Clear();
     refuse_argument(name, obj, "is out of range; valid: " + range);
   }

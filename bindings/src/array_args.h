@@ -20,6 +20,17 @@ using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>
 [[noreturn]] void refuse_argument(const std::string& name, py::handle value, const std::string& why);
 [[noreturn]] void refuse_argument(const std::string& name, double value, const std::string& why);
 
+// True for the errors a failed conversion of a value raises (TypeError, ValueError,
+// OverflowError, IndexError): those become a ValueError naming the argument. Anything else
+// (KeyboardInterrupt, MemoryError, an error inside the caller's own __array__) propagates as is.
+bool is_conversion_error(const py::error_already_set& e);
+
+// numpy.asarray(obj), refusing a masked array (whose mask numpy.asarray would drop silently).
+py::array as_numpy_array(py::handle obj, const std::string& name);
+
+// A str or os.PathLike as text; refuses empty paths and embedded NUL characters.
+std::string path_argument(py::handle path, const std::string& name = "path");
+
 // Any array-like of real numbers (int or float dtype, any layout) as C-contiguous float32.
 FloatArray real_array(py::handle obj, const std::string& name);
 

@@ -9,21 +9,6 @@
 
 namespace bxdf::python {
 
-namespace {
-
-// str or os.PathLike (pathlib.Path) → str.
-std::string path_argument(py::handle path) {
-  if (!py::isinstance<py::str>(path) && !py::hasattr(path, "__fspath__"))
-    refuse_argument("path", path, "is not a path (a str or os.PathLike)");
-  py::object p = py::module_::import("os").attr("fspath")(path);
-  if (!py::isinstance<py::str>(p)) refuse_argument("path", path, "is not a text path");
-  const std::string s = p.cast<std::string>();
-  if (s.empty()) refuse_argument("path", path, "is empty");
-  return s;
-}
-
-}  // namespace
-
 void bind_material(py::module_& m) {
   m.def(
       "save_material",
@@ -53,6 +38,7 @@ free text, omitted when empty. Raises ValueError if the file cannot be written.)
           py::gil_scoped_release nogil;
           model = io::load_material(p);
         }
+        // (load_material names the file in every error, including a measured model's data file.)
         return Model{std::move(model)};
       },
       py::arg("path"),

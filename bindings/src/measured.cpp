@@ -4,6 +4,7 @@
 
 #include "array_args.h"
 #include "binding_modules.h"
+#include "bxdf/measured/measured_data.h"
 #include "model.h"
 
 namespace bxdf::python {
@@ -12,10 +13,15 @@ void bind_measured(py::module_& m) {
   m.def(
       "load_measured",
       [](py::handle path, const py::kwargs& params) {
-        if (!py::isinstance<py::str>(path) && !py::hasattr(path, "__fspath__"))
-          refuse_argument("path", path, "is not a path (a str or os.PathLike)");
+        const std::string file = path_argument(path);
+        {
+          // The file is read here, without the GIL, so other Python threads run meanwhile;
+          // make_model below finds it in the cache.
+          py::gil_scoped_release nogil;
+          load_measured_data(file);
+        }
         py::dict all = params;  // `path` cannot be among them: Python binds it to the argument
-        all["path"] = py::module_::import("os").attr("fspath")(path);
+        all["path"] = py::str(file);
         return make_model(py::str("measured"), all);
       },
       py::arg("path"),

@@ -19,7 +19,13 @@ PYBIND11_MODULE(_bxdf, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const bxdf::ParameterError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      // Messages are UTF-8 (readers escape what is not); should a byte slip through, it shows
+      // as \xNN rather than turning the message into ''.
+      const std::string message = e.what();
+      py::object text = py::reinterpret_steal<py::object>(PyUnicode_DecodeUTF8(
+          message.data(), static_cast<Py_ssize_t>(message.size()), "backslashreplace"));
+      if (text) PyErr_SetObject(PyExc_ValueError, text.ptr());
+      else PyErr_SetString(PyExc_ValueError, "invalid parameter (message not decodable)");
     }
   });
 

@@ -40,7 +40,13 @@ bool is_bool(py::handle obj) {
 }
 
 double finite_real(const std::string& where, const ParamSpec& spec, py::handle obj) {
-  const double v = py::float_(py::reinterpret_borrow<py::object>(obj)).cast<double>();
+  double v;
+  try {
+    v = py::float_(py::reinterpret_borrow<py::object>(obj)).cast<double>();
+  } catch (py::error_already_set& e) {
+    if (!e.matches(PyExc_OverflowError)) throw;
+    refuse(where, spec, obj, "is too large for a float");  // e.g. 10**400
+  }
   // The core refuses NaN and out-of-range values; Inf would pass an unbounded range, and no
   // parameter of any model means anything at infinity.
   if (std::isinf(v)) refuse(where, spec, obj, "is not finite");
@@ -53,6 +59,7 @@ bool is_sequence(py::handle obj) {
       PySequence_Check(obj.ptr()) == 0)
     return false;
   if (PySequence_Size(obj.ptr()) < 0) {  // e.g. a 0-d numpy array: "len() of unsized object"
+    if (!PyErr_ExceptionMatches(PyExc_TypeError)) throw py::error_already_set();
     PyErr_Clear();
     return false;
   }

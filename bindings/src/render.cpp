@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "array_args.h"
 #include "binding_modules.h"
 #include "bxdf/render/renderer.h"
 #include "bxdf/render/scene_json.h"
@@ -44,7 +45,7 @@ py::array_t<float> image_array(const float* rgba, int width, int height, bool bo
 struct Channel {
   std::mutex mutex;
   std::condition_variable wake;
-  int tiles_done = 0, tiles_total = 0;
+  uint64_t tiles_done = 0, tiles_total = 0;
   bool tiles_changed = false;
   std::vector<float> pass_image;  // the film after the latest pass not yet handed to Python
   bool pass_ready = false;
@@ -108,7 +109,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
   std::optional<py::error_already_set> python_error;  // from on_progress or Ctrl-C
   bool stopped_by_callback = false;
   for (;;) {
-    int done = 0, total = 0;
+    uint64_t done = 0, total = 0;
     bool tiles_changed = false, pass_ready = false, finished = false;
     std::vector<float> pass_image;
     {
@@ -275,9 +276,7 @@ void bind_render(py::module_& m) {
       "render_scene_file",
       [](const py::object& path, const py::object& settings, const py::object& on_progress, bool bottom_up,
          bool return_stats) {
-        if (!py::isinstance<py::str>(path) && !py::hasattr(path, "__fspath__"))
-          throw ParameterError("path: " + py::repr(path).cast<std::string>() + " is not a path; expected a str or os.PathLike");
-        const std::string file = py::module_::import("os").attr("fspath")(path).cast<std::string>();
+        const std::string file = path_argument(path);
         render::LoadedScene loaded;
         {
           py::gil_scoped_release release;

@@ -10,6 +10,8 @@
 #include <utility>
 
 #include "bxdf/params.h"
+#include "array_args.h"
+#include "bxdf/render/camera.h"
 #include "bxdf/render/filter.h"
 #include "bxdf/render/environment.h"
 #include "bxdf/render/lights.h"
@@ -87,10 +89,11 @@ long long integer(py::handle v, const std::string& path, long long lo, long long
   const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   if (PyBool_Check(v.ptr()) || PyFloat_Check(v.ptr()) || !PyIndex_Check(v.ptr()))
     refuse(path, short_repr(v) + " is not an integer; expected an integer in " + range);
-  long long x;
-  try {
-    x = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr())).cast<long long>();
-  } catch (const std::exception&) {
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(v.ptr()));
+  if (!index) throw py::error_already_set();  // e.g. KeyboardInterrupt inside __index__
+  const long long x = PyLong_AsLongLong(index.ptr());
+  if (x == -1 && PyErr_Occurred()) {
+    if (!PyErr_ExceptionMatches(PyExc_OverflowError)) throw py::error_already_set();
     PyErr_Clear();
     refuse(path, short_repr(v) + " is out of range; expected an integer in " + range);
   }
@@ -118,12 +121,7 @@ Array real_array(py::handle v, const std::string& path, std::vector<py::ssize_t>
     return s + (shape.size() == 1 ? ",)" : ")");
   }();
   const std::string expected = std::string(integers_only ? "an integer" : "a real") + " array of shape " + dims;
-  py::array a;
-  try {
-    a = py::module_::import("numpy").attr("asarray")(v);
-  } catch (py::error_already_set&) {
-    refuse(path, "is not an array; expected " + expected);
-  }
+  const py::array a = as_numpy_array(v, path);
   const char kind = a.dtype().kind();
   if (integers_only ? (kind != 'i' && kind != 'u') : (kind != 'f' && kind != 'i' && kind != 'u'))
     refuse(path, "has dtype " + py::str(a.dtype()).cast<std::string>() + "; expected " + expected);
@@ -482,6 +480,8 @@ render::CameraSettings camera_from_python(py::handle v, const std::string& path)
     c.clip_start = static_cast<float>(s[0]);
     c.clip_end = static_cast<float>(s[1]);
   }
+  // The renderer's own checks (matrix range, axes), reported against this path.
+  with_path(path, [&] { return render::Camera(c, 1, 1); });
   return c;
 }
 

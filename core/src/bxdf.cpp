@@ -1,7 +1,6 @@
 #include "bxdf/bxdf.h"
 
 #include <cmath>
-#include <vector>
 
 #include "bxdf/rng.h"
 #include "bxdf/sampling.h"
@@ -20,6 +19,39 @@ Point2 stratified(int i, int side, PCG32& rng) {
 
 int grid_side(int n_samples) {
   return std::max(1, static_cast<int>(std::sqrt(static_cast<double>(std::max(1, n_samples)))));
+}
+
+// A pseudo-random permutation of [0, n) evaluated one index at a time (Kensler 2013,
+// "Correlated Multi-Jittered Sampling", cycle-walking a hash on the next power of two): no table,
+// so rho_hh needs no memory however many samples it takes.
+uint32_t permuted_index(uint32_t i, uint32_t n, uint32_t p) {
+  uint32_t w = n - 1;
+  w |= w >> 1;
+  w |= w >> 2;
+  w |= w >> 4;
+  w |= w >> 8;
+  w |= w >> 16;
+  do {
+    i ^= p;
+    i *= 0xe170893du;
+    i ^= p >> 16;
+    i ^= (i & w) >> 4;
+    i ^= p >> 8;
+    i *= 0x0929eb3fu;
+    i ^= p >> 23;
+    i ^= (i & w) >> 1;
+    i *= 1u | p >> 27;
+    i *= 0x6935fa69u;
+    i ^= (i & w) >> 11;
+    i *= 0x74dcb303u;
+    i ^= (i & w) >> 2;
+    i *= 0x9e501cc3u;
+    i ^= (i & w) >> 2;
+    i *= 0xc860a3dfu;
+    i &= w;
+    i ^= i >> 5;
+  } while (i >= n);
+  return static_cast<uint32_t>((uint64_t(i) + p) % n);
 }
 
 }  // namespace
@@ -46,14 +78,13 @@ RGB BxDF::rho_hh(int n_samples, uint64_t seed) const {
   const int side = grid_side(n_samples);
   const int n = side * side;
   PCG32 rng(seed, 0x9e3779b97f4a7c15ULL);
-  // The two grids are decorrelated by shuffling the outgoing strata.
-  std::vector<int> perm(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) perm[static_cast<size_t>(i)] = i;
-  for (int i = n - 1; i > 0; --i)
-    std::swap(perm[static_cast<size_t>(i)], perm[rng.bounded(static_cast<uint32_t>(i + 1))]);
+  // The two grids are decorrelated by permuting the outgoing strata.
+  const uint32_t perm_seed = rng.next_u32();
   double sum[3] = {0, 0, 0};
   for (int i = 0; i < n; ++i) {
-    const Vec3 wo = sample_uniform_hemisphere(stratified(perm[static_cast<size_t>(i)], side, rng));
+    const int stratum = static_cast<int>(
+        permuted_index(static_cast<uint32_t>(i), static_cast<uint32_t>(n), perm_seed));
+    const Vec3 wo = sample_uniform_hemisphere(stratified(stratum, side, rng));
     const BxDFSample s = sample_f(wo, stratified(i, side, rng));
     if (!s.valid()) continue;
     const float w = std::fabs(s.wi.z) * std::fabs(wo.z) / (s.pdf * uniform_hemisphere_pdf());

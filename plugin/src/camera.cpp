@@ -1,5 +1,6 @@
 #include "bxdf/render/camera.h"
 
+#include <cmath>
 #include <string>
 
 #include "bxdf/params.h"
@@ -42,8 +43,11 @@ Camera::Camera(const CameraSettings& s, int width, int height) {
                          std::to_string(s.clip_end) + " must satisfy 0 <= start < end < inf");
   if (!std::isfinite(s.shift_x) || !std::isfinite(s.shift_y))
     throw ParameterError("camera shift must be finite");
-  for (float v : s.camera_to_world)
-    if (!std::isfinite(v)) throw ParameterError("camera matrix has a non-finite entry");
+  for (size_t i = 0; i < s.camera_to_world.size(); ++i)
+    if (!(std::fabs(s.camera_to_world[i]) <= kMaxSceneCoordinate))  // NaN and Inf fail too
+      throw ParameterError("camera matrix[" + std::to_string(i / 4) + "][" + std::to_string(i % 4) +
+                           "] = " + std::to_string(s.camera_to_world[i]) +
+                           " is outside [-1e9, 1e9] (the renderer's coordinate range, metres)");
 
   width_ = width;
   height_ = height;
@@ -74,7 +78,7 @@ Camera::Camera(const CameraSettings& s, int width, int height) {
   back_ = column(s.camera_to_world, 2);
   eye_ = column(s.camera_to_world, 3);
   if (!normalize_direction(right_) || !normalize_direction(up_) || !normalize_direction(back_))
-    throw ParameterError("camera matrix has a zero axis");
+    throw ParameterError("camera matrix has a zero axis (one of its first three columns is 0)");
   forward_ = -back_;
 }
 

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
+#include <vector>
 
 #include "bxdf/io/atomic_file.h"
 #include "bxdf/params.h"
@@ -29,8 +31,38 @@ float linear_to_srgb(float v) {
   return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
 }
 
-// A name in the target's folder that nobody else is writing, keeping the extension so that
-// OIIO picks the same format.
+// Reads the file just written back in full. Writers do not always notice a failed write (the PNG
+// writer misses a short write under a file-size limit or on a full disk); a truncated or
+// corrupt file fails to decode.
+void verify_written_image(const std::string& file, const std::string& shown, const Image& image) {
+  if (lower_extension(file) == ".png") {
+    // A complete PNG ends with its IEND chunk. Checked first: OIIO's PNG reader cannot be
+    // trusted with a truncated file (it has crashed on one).
+    static const unsigned char kIend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+    unsigned char tail[12] = {};
+    std::ifstream f(file, std::ios::binary | std::ios::ate);
+    const bool complete = f && f.tellg() >= 12 && f.seekg(-12, std::ios::end) &&
+                          f.read(reinterpret_cast<char*>(tail), 12) &&
+                          std::equal(tail, tail + 12, kIend);
+    if (!complete)
+      throw std::runtime_error("cannot write '" + shown +
+                               "': the PNG file is incomplete (a full disk or a file-size limit?)");
+  }
+  auto in = OIIO::ImageInput::open(file);
+  if (!in) throw std::runtime_error("cannot write '" + shown + "': the written file does not read back (" +
+                                    OIIO::geterror() + ")");
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) *
+                            static_cast<size_t>(std::max(spec.nchannels, 1)));
+  const bool ok = spec.width == image.width && spec.height == image.height && spec.nchannels == 4 &&
+                  in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data());
+  const std::string error = ok ? "" : in->geterror();
+  in->close();
+  if (!ok)
+    throw std::runtime_error("cannot write '" + shown + "': the written file is incomplete or corrupt" +
+                             (error.empty() ? std::string() : " (" + error + ")"));
+}
+
 }  // namespace
 
 void write_image(const std::string& path, const Image& image) {
@@ -69,6 +101,8 @@ void write_image(const std::string& path, const Image& image) {
     if (!out->close() || !ok)
       throw std::runtime_error("cannot write '" + path + "': " +
                                (error.empty() ? out->geterror() : error));
+    out.reset();
+    verify_written_image(temp, path, image);
   });
 }
 

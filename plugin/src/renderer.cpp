@@ -76,7 +76,7 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
 
   RenderProgress progress;
   progress.passes = passes;
-  progress.tiles_total = passes * static_cast<int>(tiles.size());
+  progress.tiles_total = static_cast<uint64_t>(passes) * tiles.size();
   std::mutex progress_mutex;
   std::atomic<bool> stop{false};
   std::atomic<uint64_t> rays{0}, shadow_rays{0}, rejected{0}, camera_samples{0};

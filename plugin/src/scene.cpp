@@ -178,8 +178,9 @@ uint32_t Scene::add_mesh(const MeshView& m) {
   StoredMesh s;
   s.positions.assign(m.positions, m.positions + 3 * m.num_vertices);
   for (size_t i = 0; i < s.positions.size(); ++i)
-    if (!std::isfinite(s.positions[i]))
-      throw ParameterError(who + ": positions[" + std::to_string(i / 3) + "] is not finite");
+    if (!(std::fabs(s.positions[i]) <= kMaxSceneCoordinate))  // NaN fails too
+      throw ParameterError(who + ": positions[" + std::to_string(i / 3) + "] has the coordinate " +
+                           std::to_string(s.positions[i]) + ", outside [-1e9, 1e9] m");
   if (m.normals) {
     s.normals.assign(m.normals, m.normals + 3 * m.num_vertices);
     for (size_t i = 0; i < m.num_vertices; ++i) {

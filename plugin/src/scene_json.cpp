@@ -3,12 +3,12 @@
 #include <tiny_obj_loader.h>
 
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "bxdf/input_file.h"
+#include "bxdf/io/json_text.h"
 #include "bxdf/io/material_json.h"
 #include "bxdf/render/environment.h"
 #include "bxdf/render/lights.h"
@@ -21,24 +21,18 @@ using nlohmann::json;
 
 namespace {
 
-std::string describe(const json& j) {
-  std::string text = j.dump();
-  if (text.size() > 60) text = text.substr(0, 57) + "...";
-  if (j.is_array()) return "an array of " + std::to_string(j.size()) + " (" + text + ")";
-  return std::string("a ") + j.type_name() + " (" + text + ")";
-}
-
 // Reads one scene file; every message starts with the file name and names the JSON path.
 class Reader {
  public:
   Reader(std::string file, std::string base_dir) : file_(std::move(file)), base_(std::move(base_dir)) {}
 
   [[noreturn]] void fail(const std::string& path, const std::string& expected, const json& got) const {
-    throw SceneFileError(file_ + ": field '" + path + "': expected " + expected + ", got " +
-                         describe(got));
+    // Keys and strings from the file may hold control characters: the whole message is escaped.
+    throw SceneFileError(printable(file_ + ": field '" + path + "': expected " + expected + ", got " +
+                                   io::describe_json(got)));
   }
   [[noreturn]] void fail_message(const std::string& path, const std::string& message) const {
-    throw SceneFileError(file_ + ": field '" + path + "': " + message);
+    throw SceneFileError(printable(file_ + ": field '" + path + "': " + message));
   }
 
   const json& require(const json& obj, const std::string& path, const char* key) const {
@@ -79,8 +73,13 @@ class Reader {
   int integer_in(const json& j, const std::string& path, long long lo, long long hi,
                  const std::string& range) const {
     if (!j.is_number_integer()) fail(path, "an integer in " + range, j);
+    // An unsigned value past INT64_MAX would wrap to a negative long long.
+    const bool in_range = j.is_number_unsigned()
+                              ? hi >= 0 && j.get<unsigned long long>() <= static_cast<unsigned long long>(hi) &&
+                                    static_cast<long long>(j.get<unsigned long long>()) >= lo
+                              : j.get<long long>() >= lo && j.get<long long>() <= hi;
+    if (!in_range) fail(path, "an integer in " + range, j);
     const long long v = j.get<long long>();
-    if (v < lo || v > hi) fail(path, "an integer in " + range, j);
     return static_cast<int>(v);
   }
   std::string string(const json& j, const std::string& path) const {
@@ -319,13 +318,11 @@ uint32_t read_material(const Reader& r, const json& j, const std::string& path, 
       r.fail(path + ".components",
              "an array of 1 to " + std::to_string(BSDF::kMaxComponents) + " material objects", comps);
     for (size_t i = 0; i < comps.size(); ++i) {
-      const io::MaterialDesc d =
-          io::material_from_json(comps[i], where + ".components[" + std::to_string(i) + "]");
-      m.components.push_back(make(d.model, d.params));
+      const std::string component = where + ".components[" + std::to_string(i) + "]";
+      m.components.push_back(io::make_material(io::material_from_json(comps[i], component), component));
     }
   } else if (model_part.contains("model") || model_part.contains("preset")) {
-    const io::MaterialDesc d = io::material_from_json(model_part, where);
-    m.components.push_back(make(d.model, d.params));
+    m.components.push_back(io::make_material(io::material_from_json(model_part, where), where));
   } else if (m.emission.is_black()) {
     r.fail_message(path, "a material needs \"model\" (or \"preset\"), \"components\" or \"emission\"");
   }
@@ -337,22 +334,42 @@ Mesh load_obj(const Reader& r, const std::string& file, const std::string& path,
   namespace fs = std::filesystem;
   fs::path p(file);
   if (p.is_relative()) p = fs::path(r.base_) / p;
-  if (!fs::exists(p)) r.fail_message(path, "OBJ file '" + p.string() + "' does not exist");
+  try {
+    check_input_file(p.string(), kMaxMeshFileBytes, "OBJ file");
+  } catch (const ParameterError& e) {
+    r.fail_message(path, e.what());
+  }
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.mtl_search_path = p.parent_path().string();
   tinyobj::ObjReader obj;
   if (!obj.ParseFromFile(p.string(), config))
-    r.fail_message(path, "cannot read OBJ file '" + p.string() + "': " + obj.Error());
+    r.fail_message(path, "cannot read OBJ file '" + printable(p.string()) + "': " + printable(obj.Error()));
   const tinyobj::attrib_t& a = obj.GetAttrib();
   const auto& obj_materials = obj.GetMaterials();
+  // Face indices come from the file: each must name an existing position, normal or UV (the
+  // loader has already turned negative, relative indices into absolute ones).
+  const auto check_index = [&](int index, size_t count, const char* what, const std::string& shape,
+                               size_t face) {
+    if (index >= 0 && static_cast<size_t>(index) < count) return;
+    r.fail_message(path, "OBJ file '" + printable(p.string()) + "', object '" + printable(shape) +
+                             "', face " + std::to_string(face + 1) + ": " + what + " index " +
+                             (index < 0 ? "missing or invalid (0 or before the first)"
+                                        : std::to_string(index + 1)) +
+                             " is out of range [1, " + std::to_string(count) + "]");
+  };
 
   // OBJ indexes positions, normals and UVs separately: make one vertex per distinct triple.
   Mesh mesh;
   std::map<std::tuple<int, int, int>, uint32_t> vertex_of;
   bool all_normals = true, all_uvs = true;
   for (const auto& shape : obj.GetShapes())
-    for (const auto& idx : shape.mesh.indices) {
+    for (size_t i = 0; i < shape.mesh.indices.size(); ++i) {
+      // The loader marks a missing normal or UV with -1; a relative index that points before
+      // the first entry comes out below -1.
+      const tinyobj::index_t& idx = shape.mesh.indices[i];
+      if (idx.normal_index < -1) check_index(idx.normal_index, a.normals.size() / 3, "normal", shape.name, i / 3);
+      if (idx.texcoord_index < -1) check_index(idx.texcoord_index, a.texcoords.size() / 2, "texture", shape.name, i / 3);
       all_normals = all_normals && idx.normal_index >= 0;
       all_uvs = all_uvs && idx.texcoord_index >= 0;
     }
@@ -362,6 +379,9 @@ Mesh load_obj(const Reader& r, const std::string& file, const std::string& path,
       if (sm.num_face_vertices[f] != 3) continue;  // triangulated; skip degenerate leftovers
       for (int k = 0; k < 3; ++k) {
         const tinyobj::index_t idx = sm.indices[3 * f + size_t(k)];
+        check_index(idx.vertex_index, a.vertices.size() / 3, "vertex", shape.name, f);
+        if (all_normals) check_index(idx.normal_index, a.normals.size() / 3, "normal", shape.name, f);
+        if (all_uvs) check_index(idx.texcoord_index, a.texcoords.size() / 2, "texture", shape.name, f);
         const auto key = std::make_tuple(idx.vertex_index, all_normals ? idx.normal_index : -1,
                                          all_uvs ? idx.texcoord_index : -1);
         auto it = vertex_of.find(key);
@@ -381,7 +401,8 @@ Mesh load_obj(const Reader& r, const std::string& file, const std::string& path,
       } else {
         // Without a "material" field, the OBJ's own usemtl names pick scene materials.
         const int mid = f < sm.material_ids.size() ? sm.material_ids[f] : -1;
-        const std::string name = mid >= 0 ? obj_materials[size_t(mid)].name : "";
+        const std::string name =
+            mid >= 0 && size_t(mid) < obj_materials.size() ? obj_materials[size_t(mid)].name : "";
         auto found = materials.find(name);
         if (found == materials.end())
           r.fail_message(path, name.empty()
@@ -629,9 +650,9 @@ LoadedScene parse_scene_json(const std::string& text, const std::string& name,
                              const std::string& base_dir) {
   json root;
   try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw SceneFileError(name + ": not valid JSON: " + e.what());
+    root = io::parse_json(text, name);
+  } catch (const ParameterError& e) {
+    throw SceneFileError(e.what());
   }
   const Reader r(name, base_dir);
   if (!root.is_object()) r.fail("(root)", "an object", root);
@@ -694,12 +715,14 @@ LoadedScene parse_scene_json(const std::string& text, const std::string& name,
 }
 
 LoadedScene load_scene_json(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneFileError(path + ": cannot open the scene file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
+  std::string text;
+  try {
+    text = read_input_file(path, kMaxJsonFileBytes, "scene file");
+  } catch (const ParameterError& e) {
+    throw SceneFileError(e.what());
+  }
   const std::string base = std::filesystem::path(path).parent_path().string();
-  return parse_scene_json(buffer.str(), path, base.empty() ? "." : base);
+  return parse_scene_json(text, printable(path), base.empty() ? "." : base);
 }
 
 }  // namespace bxdf::render

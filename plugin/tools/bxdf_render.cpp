@@ -90,8 +90,6 @@ Options parse(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using namespace bxdf::render;
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
   const Options opt = parse(argc, argv);
 
   LoadedScene loaded;
@@ -115,6 +113,10 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  // From here on Ctrl-C and SIGTERM cancel the render (the output stays as it was); while the
+  // scene loads they end the process at once, as nothing has been written.
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
   RenderCallbacks callbacks;
   callbacks.cancel = &g_cancel;
   if (!opt.quiet) {

@@ -18,6 +18,7 @@
 #include "bxdf/registry.h"
 #include "bxdf/rng.h"
 #include "bxdf/sampling.h"
+#include "../scratch_folder.h"
 
 using namespace bxdf;
 namespace fs = std::filesystem;
@@ -52,14 +53,7 @@ std::string write_text(const std::string& name, const std::string& text) {
   return p.string();
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ParameterError& e) {
-    return e.what();
-  }
-  return "";
-}
+using bxdf::test_support::error_of;
 
 Vec3 random_upper(PCG32& rng) { return sample_uniform_hemisphere({rng.uniform(), rng.uniform()}); }
 

@@ -116,7 +116,7 @@ TEST_F(CLI, GoodSceneRendersToExrAndPng) {
                   0.01f + 0.02f * img.rgba[i + c]);
   // No temporary files are left behind.
   for (const auto& e : fs::directory_iterator(dir_))
-    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+    EXPECT_EQ(e.path().filename().string().find(".partial-"), std::string::npos) << e.path();
 }
 
 TEST_F(CLI, OptionsOverrideTheFile) {
@@ -230,5 +230,5 @@ TEST_F(CLI, CancelledRenderLeavesThePreviousOutputIntact) {
   contents << in.rdbuf();
   EXPECT_EQ(contents.str(), "previous contents");
   for (const auto& e : fs::directory_iterator(dir_))
-    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+    EXPECT_EQ(e.path().filename().string().find(".partial-"), std::string::npos) << e.path();
 }

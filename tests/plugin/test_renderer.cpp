@@ -80,7 +80,7 @@ TEST(Renderer, ProgressPassesAndCancel) {
   RenderCallbacks cb;
   cb.on_tile = [&](const RenderProgress& p) {
     ++tiles;
-    EXPECT_EQ(p.tiles_total, 4 * 9);
+    EXPECT_EQ(p.tiles_total, 4u * 9u);
     EXPECT_LE(p.tiles_done, p.tiles_total);
     return true;
   };

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bxdf/measured/cie1931.h"
+#include "bxdf/input_file.h"
 #include "bxdf/params.h"
 
 namespace bxdf {
@@ -14,7 +15,7 @@ namespace bxdf {
 namespace {
 
 [[noreturn]] void refuse(const std::string& path, int line, const std::string& problem) {
-  throw ParameterError("Cornell BRDF file '" + path + "'" +
+  throw ParameterError("Cornell BRDF file '" + printable(path) + "'" +
                        (line > 0 ? ", line " + std::to_string(line) : std::string()) + ": " +
                        problem);
 }
@@ -32,8 +33,8 @@ void tokenize(const std::string& path, int line_no, const std::string& line,
   while (is >> word) {
     char* end = nullptr;
     const double v = std::strtod(word.c_str(), &end);
-    if (end == word.c_str() || *end != '\0') refuse(path, line_no, "'" + word + "' is not a number");
-    if (!std::isfinite(v)) refuse(path, line_no, "non-finite value '" + word + "'");
+    if (end == word.c_str() || *end != '\0') refuse(path, line_no, "'" + printable(word) + "' is not a number");
+    if (!std::isfinite(v)) refuse(path, line_no, "non-finite value '" + printable(word) + "'");
     out->push_back({v, line_no});
   }
 }
@@ -46,6 +47,7 @@ Vec3 direction_from_angles(float theta, float phi) {
 }
 
 std::vector<CornellSample> read_cornell(const std::string& path) {
+  check_input_file(path, kMaxMeasuredFileBytes, "Cornell BRDF file");
   std::ifstream in(path);
   if (!in) refuse(path, 0, "cannot be opened");
 
@@ -107,6 +109,14 @@ std::vector<CornellSample> read_cornell(const std::string& path) {
         refuse(path, ln, std::string(k == 0 ? "theta i" : "theta s") + " = " +
                              std::to_string(theta) + " is outside [0, pi/2]");
     }
+    // The files give φ in [-π, π] or [0, 2π]; far outside, sin and cos of the float lose all
+    // precision.
+    for (size_t k : {size_t(1), size_t(3)}) {
+      const double phi = rows[r + k].value;
+      if (!(std::fabs(phi) <= 2.0 * kPi + 1e-5))
+        refuse(path, ln, std::string(k == 1 ? "phi i" : "phi s") + " = " + std::to_string(phi) +
+                             " is outside [-2 pi, 2 pi]");
+    }
     float spectrum[kCieSamples];
     for (int i = 0; i < kCieSamples; ++i) {
       const double v = rows[r + 4 + static_cast<size_t>(i)].value;
@@ -114,6 +124,9 @@ std::vector<CornellSample> read_cornell(const std::string& path) {
         refuse(path, ln, "negative spectral value " + std::to_string(v) + " at " +
                              std::to_string(400 + 10 * i) + " nm");
       spectrum[i] = static_cast<float>(v);
+      if (!std::isfinite(spectrum[i]))  // finite as a double, Inf as a float
+        refuse(path, ln, "spectral value " + std::to_string(v) + " at " +
+                             std::to_string(400 + 10 * i) + " nm is too large for a float");
     }
     CornellSample s;
     s.theta_i = static_cast<float>(rows[r].value);
@@ -122,6 +135,8 @@ std::vector<CornellSample> read_cornell(const std::string& path) {
     s.phi_s = static_cast<float>(rows[r + 3].value);
     // Rec.709 can be slightly negative for saturated spectra outside its gamut; a BRDF cannot.
     const RGB rgb = spectrum_to_rgb(spectrum);
+    if (!std::isfinite(rgb.r) || !std::isfinite(rgb.g) || !std::isfinite(rgb.b))
+      refuse(path, ln, "spectral values too large: their RGB is not finite");
     s.value = RGB(std::max(0.0f, rgb.r), std::max(0.0f, rgb.g), std::max(0.0f, rgb.b));
     out.push_back(s);
   }

@@ -1,11 +1,14 @@
 #include "bxdf/measured/measured_data.h"
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <list>
 #include <mutex>
 
+#include "bxdf/input_file.h"
 #include "bxdf/params.h"
 
 namespace bxdf {
@@ -22,7 +25,7 @@ MeasuredFormat detect_format(const std::string& path) {
   if (ends_with(path, ".binary")) return MeasuredFormat::Merl;
   if (ends_with(path, ".brdf")) return MeasuredFormat::Cornell;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw ParameterError("measured file '" + path + "' cannot be opened");
+  if (!in) throw ParameterError("measured file '" + printable(path) + "' cannot be opened");
   int32_t dims[3] = {0, 0, 0};
   in.read(reinterpret_cast<char*>(dims), sizeof(dims));
   if (in && dims[0] == kMerlThetaH && dims[1] == kMerlThetaD && dims[2] == kMerlPhiD)
@@ -32,7 +35,7 @@ MeasuredFormat detect_format(const std::string& path) {
   std::string first;
   std::getline(in, first);
   if (!first.empty() && first[0] == '#') return MeasuredFormat::Cornell;
-  throw ParameterError("measured file '" + path +
+  throw ParameterError("measured file '" + printable(path) +
                        "' is neither a MERL .binary (header 90 90 180) nor a Cornell .brdf "
                        "(text starting with '#')");
 }
@@ -86,39 +89,57 @@ std::vector<MeasuredSample> MeasuredData::samples(int merl_stride) const {
 
 std::shared_ptr<const MeasuredData> load_measured_data(const std::string& path) {
   namespace fs = std::filesystem;
+  check_input_file(path, std::max<std::uintmax_t>(kMaxMeasuredFileBytes, kMerlFileBytes),
+                   "measured file");
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(fs::path(path), ec);
   const std::string key = ec ? path : canonical.string();
-  if (!fs::is_regular_file(key, ec))
-    throw ParameterError("measured file '" + path + "' does not exist or is not a regular file");
   const auto mtime = fs::last_write_time(key, ec);
   const auto size = fs::file_size(key, ec);
 
+  using Loaded = std::shared_future<std::shared_ptr<const MeasuredData>>;
   struct Entry {
     std::string key;
     fs::file_time_type mtime;
     uintmax_t size;
-    std::shared_ptr<const MeasuredData> data;
+    Loaded data;  // ready, or being read by another thread
   };
   static std::mutex mutex;
   static std::list<Entry> cache;  // most recently used first
   constexpr size_t kCapacity = 8;
 
-  std::lock_guard<std::mutex> lock(mutex);
-  for (auto it = cache.begin(); it != cache.end(); ++it) {
-    if (it->key != key) continue;
-    if (it->mtime == mtime && it->size == size) {
-      cache.splice(cache.begin(), cache, it);
-      return cache.front().data;
+  std::promise<std::shared_ptr<const MeasuredData>> promise;
+  const Loaded mine = promise.get_future().share();
+  Loaded loaded;
+  {
+    // The lock guards the list only; files are read outside it, so that one slow read does not
+    // stall loads of other files. A thread asking for a file being read waits for that read.
+    std::lock_guard<std::mutex> lock(mutex);
+    for (auto it = cache.begin(); it != cache.end(); ++it) {
+      if (it->key != key) continue;
+      if (it->mtime == mtime && it->size == size) {
+        cache.splice(cache.begin(), cache, it);
+        loaded = cache.front().data;
+      } else {
+        cache.erase(it);  // the file changed: read it again
+      }
+      break;
     }
-    cache.erase(it);  // the file changed: read it again
-    break;
+    if (!loaded.valid()) {
+      cache.push_front({key, mtime, size, mine});
+      if (cache.size() > kCapacity) cache.pop_back();
+    }
   }
-  // Reading under the lock keeps two threads from reading one file twice; loads are rare.
-  std::shared_ptr<const MeasuredData> data = MeasuredData::read(key);
-  cache.push_front({key, mtime, size, data});
-  if (cache.size() > kCapacity) cache.pop_back();
-  return data;
+  if (loaded.valid()) return loaded.get();  // rethrows the reader's error, if it failed
+
+  try {
+    promise.set_value(MeasuredData::read(key));
+  } catch (...) {
+    promise.set_exception(std::current_exception());
+    std::lock_guard<std::mutex> lock(mutex);  // a failed read is not cached
+    cache.remove_if([&](const Entry& e) { return e.key == key && e.mtime == mtime && e.size == size; });
+  }
+  return mine.get();
 }
 
 size_t measured_file_reads() { return g_reads.load(); }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "bxdf/input_file.h"
 #include "bxdf/params.h"
 
 namespace bxdf {
@@ -12,7 +13,7 @@ namespace {
 constexpr double kPiD = 3.14159265358979323846;
 
 [[noreturn]] void refuse(const std::string& path, const std::string& problem) {
-  throw ParameterError("MERL file '" + path + "': " + problem);
+  throw ParameterError("MERL file '" + printable(path) + "': " + problem);
 }
 
 }  // namespace
@@ -127,11 +128,12 @@ RGB MerlData::lookup_trilinear(const HalfDiff& a) const {
 }
 
 MerlData read_merl(const std::string& path) {
+  // A regular file (not /dev/zero or a FIFO); a file somewhat too long still gets the
+  // "trailing data" message below.
+  const auto size = static_cast<std::streamoff>(
+      check_input_file(path, kMerlFileBytes + (1u << 20), "MERL file"));
   std::ifstream in(path, std::ios::binary);
   if (!in) refuse(path, "cannot be opened");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  in.seekg(0, std::ios::beg);
   if (size < static_cast<std::streamoff>(3 * sizeof(int32_t)))
     refuse(path, "is " + std::to_string(size) + " bytes, too short for the 12-byte header");
   int32_t dims[3];
@@ -162,7 +164,12 @@ MerlData read_merl(const std::string& path) {
         refuse(path, std::string("holds a non-finite value (") + (std::isnan(v) ? "NaN" : "Inf") +
                          ") in the " + kChannel[c] + " channel at cell " + std::to_string(i));
       if (v < 0.0) d.measured[i] = 0;
-      d.rgb[3 * i + c] = static_cast<float>(v * kMerlScale[c]);
+      // Checked after the cast: a finite double such as 1e42 becomes Inf as a float.
+      const float scaled = static_cast<float>(v * kMerlScale[c]);
+      if (!std::isfinite(scaled))
+        refuse(path, "holds " + std::to_string(v) + " in the " + kChannel[c] + " channel at cell " +
+                         std::to_string(i) + ", too large for a float once scaled");
+      d.rgb[3 * i + c] = scaled;
     }
   }
   // Fill missing cells along θd from the nearest measured cell of the same (θh, φd) column.

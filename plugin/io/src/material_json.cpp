@@ -1,10 +1,12 @@
 #include "bxdf/io/material_json.h"
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
-#include <sstream>
 
+#include "bxdf/input_file.h"
 #include "bxdf/io/atomic_file.h"
+#include "bxdf/io/json_text.h"
 #include "bxdf/presets.h"
 
 namespace bxdf::io {
@@ -13,15 +15,10 @@ using nlohmann::json;
 
 namespace {
 
-std::string json_type_name(const json& j) {
-  if (j.is_array()) return "an array of " + std::to_string(j.size());
-  return std::string("a ") + j.type_name();
-}
-
 [[noreturn]] void bad_field(const std::string& where, const std::string& field,
                             const std::string& expected, const json& got) {
-  throw ParameterError(where + ": field '" + field + "': expected " + expected + ", got " +
-                       json_type_name(got) + " (" + got.dump() + ")");
+  throw ParameterError(printable(where + ": field '" + field + "': expected " + expected +
+                                 ", got " + describe_json(got)));
 }
 
 const ParamSpec* find_spec(const std::vector<ParamSpec>& specs, const std::string& name) {
@@ -47,8 +44,8 @@ ParamSet record_from_json(const std::vector<ParamSpec>& specs, const json& j,
     const std::string sub = field.empty() ? it.key() : field + "." + it.key();
     const ParamSpec* spec = find_spec(specs, it.key());
     if (!spec)
-      throw ParameterError(where + ": field '" + sub + "': unknown parameter; known: " +
-                           join_names(specs));
+      throw ParameterError(printable(where + ": field '" + sub + "': unknown parameter; known: " +
+                                     join_names(specs)));
     out.set(it.key(), value_from_json(*spec, it.value(), where, sub));
   }
   return out;
@@ -116,7 +113,7 @@ ParamSet params_from_json(const std::string& model, const json& j, const std::st
   if (!info) {
     std::string known;
     for (const auto& m : models()) known += (known.empty() ? "" : ", ") + m.name;
-    throw ParameterError(where + ": field 'model': unknown model '" + model + "'; known: " + known);
+    throw ParameterError(where + ": field 'model': unknown model '" + printable(model) + "'; known: " + known);
   }
   const ParamSet given = record_from_json(info->params, j, where, "params");
   try {
@@ -169,7 +166,12 @@ MaterialDesc material_from_json(const json& j, const std::string& where) {
   }
   if (j.contains("version")) {
     const json& v = j["version"];
-    if (!v.is_number_integer() || v.get<int>() < 1 || v.get<int>() > kMaterialVersion)
+    // Compared as the 64-bit value JSON holds: get<int>() would wrap 4294967297 to 1.
+    const bool in_range = v.is_number_unsigned()
+                              ? v.get<std::uint64_t>() >= 1 && v.get<std::uint64_t>() <= kMaterialVersion
+                              : v.is_number_integer() && v.get<std::int64_t>() >= 1 &&
+                                    v.get<std::int64_t>() <= kMaterialVersion;
+    if (!in_range)
       bad_field(where, "version", "an integer from 1 to " + std::to_string(kMaterialVersion), v);
   }
   if (j.contains("graph")) return graph_material_from_json(j, where);
@@ -178,8 +180,8 @@ MaterialDesc material_from_json(const json& j, const std::string& where) {
     bool ok = false;
     for (const char* k : known) ok = ok || it.key() == k;
     if (!ok)
-      throw ParameterError(where + ": field '" + it.key() +
-                           "': unknown; a material has format, version, name, model or preset, params");
+      throw ParameterError(printable(where + ": field '" + it.key() +
+                                     "': unknown; a material has format, version, name, model or preset, params"));
   }
   MaterialDesc m;
   if (j.contains("name")) {
@@ -194,7 +196,7 @@ MaterialDesc material_from_json(const json& j, const std::string& where) {
     const Preset* p = find_preset(j["preset"].get<std::string>());
     if (!p)
       throw ParameterError(where + ": field 'preset': unknown preset '" +
-                           j["preset"].get<std::string>() + "'; known: " + preset_names());
+                           printable(j["preset"].get<std::string>()) + "'; known: " + preset_names());
     m.model = p->model;
     base = p->params;
   } else {
@@ -232,25 +234,27 @@ void save_material(const BxDF& model, const std::string& path, const std::string
 }
 
 MaterialDesc load_material_desc(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ParameterError("cannot read material file '" + path + "'");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  json j;
+  const std::string text = read_input_file(path, kMaxJsonFileBytes, "material file");
+  return material_from_json(parse_json(text, printable(path)), printable(path));
+}
+
+BxDFPtr make_material(const MaterialDesc& m, const std::string& where) {
   try {
-    j = json::parse(buffer.str());
-  } catch (const json::parse_error& e) {
-    throw ParameterError(path + ": not valid JSON: " + e.what());
+    return make(m.model, m.params);
+  } catch (const ParameterError& e) {
+    // Models that read files (measured) fail here, after validation: name the material file.
+    const std::string message = e.what();
+    if (message.rfind(where, 0) == 0) throw;
+    throw ParameterError(where + ": " + message);
   }
-  return material_from_json(j, path);
 }
 
 BxDFPtr load_material(const std::string& path) {
   const MaterialDesc m = load_material_desc(path);
   if (!m.graph.is_null())
-    throw ParameterError(path + ": a node material (a graph of closures, not one model): use it as "
-                                "a scene material");
-  return make(m.model, m.params);
+    throw ParameterError(printable(path) + ": a node material (a graph of closures, not one model): "
+                         "use it as a scene material");
+  return make_material(m, printable(path));
 }
 
 }  // namespace bxdf::io

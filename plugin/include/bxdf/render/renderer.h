@@ -32,7 +32,8 @@ struct RenderSettings {
 struct RenderProgress {
   int pass = 0, passes = 0;      // passes finished / total
   int samples_done = 0;          // per pixel, in finished passes
-  int tiles_done = 0, tiles_total = 0;  // over the whole render
+  // Over the whole render; 64-bit, as passes x tiles passes 2^31 at the largest spp and size.
+  uint64_t tiles_done = 0, tiles_total = 0;
   double fraction() const { return tiles_total ? double(tiles_done) / tiles_total : 0.0; }
 };
 

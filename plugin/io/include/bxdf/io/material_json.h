@@ -44,6 +44,8 @@ MaterialDesc material_from_json(const nlohmann::json& j, const std::string& wher
 void save_material(const MaterialDesc& material, const std::string& path);
 void save_material(const BxDF& model, const std::string& path, const std::string& name = "");
 MaterialDesc load_material_desc(const std::string& path);
+// make(m.model, m.params); a failure (e.g. a measured model's missing data file) names `where`.
+BxDFPtr make_material(const MaterialDesc& m, const std::string& where);
 // Refuses a node material (a graph is not one model) with a message saying so.
 BxDFPtr load_material(const std::string& path);
 
