@@ -140,6 +140,28 @@ TEST(MultiscatterGGX, FIsDeterministicBatchEqualsScalarAndReflectionIsReciprocal
   }
 }
 
+// sample_f reports f(wo, wi) of the direction it returns, bit for bit, although f hashes the
+// directions' bits (the sampled direction is snapped to a normalisation fixed point).
+TEST(MultiscatterGGX, SampleReportsTheFOfItsDirection) {
+  const LobeModel<MultiscatterGGXReflection> refl(
+      reflection_setup(0.5f, 0.3f, MultiscatterFresnel::kInterpolated));
+  const LobeModel<MultiscatterGGXGlass> glass(glass_setup(0.5f, 1.5f, MultiscatterFresnel::kColor));
+  PCG32 rng(21);
+  int checked = 0;
+  for (const BxDF* m : {static_cast<const BxDF*>(&refl), static_cast<const BxDF*>(&glass)}) {
+    for (const Vec3& wo : directions()) {
+      for (int i = 0; i < 2000; ++i) {
+        const BxDFSample s = m->sample_f(wo, Point2(rng.uniform(), rng.uniform()));
+        if (!s.valid()) continue;
+        EXPECT_TRUE(s.f == m->f(wo, s.wi)) << i;
+        EXPECT_EQ(s.pdf, m->pdf(wo, s.wi)) << i;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 10000);
+}
+
 // The 16-walk f against a 20000-walk average, over random pairs: the relative RMS error of
 // f and the share of pairs beyond 4 standard errors of the 16-walk mean.
 TEST(MultiscatterGGX, FAgreesWithLongWalkAverage) {

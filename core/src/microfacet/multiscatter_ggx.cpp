@@ -466,6 +466,7 @@ DirectionSample MultiscatterGGXReflection::sample_direction(Vec3 wo, Point2 u) c
   }
   if (!(wi.z > 0.0f)) return d;
   if (below) wi.z = -wi.z;
+  if (!snap_to_unit(wi)) return d;
   d.wi = wi;
   d.flags = kReflection | kGlossy;
   d.ok = true;
@@ -618,6 +619,7 @@ DirectionSample MultiscatterGGXGlass::sample_direction(Vec3 wo, Point2 u) const 
   }
   d.flags = (wi.z > 0.0f ? kReflection : kTransmission) | kGlossy;
   if (below) wi.z = -wi.z;
+  if (!snap_to_unit(wi) || wi.z == 0.0f) return d;
   d.wi = wi;
   d.ok = true;
   return d;
