@@ -417,29 +417,33 @@ MultiscatterGGXReflection::MultiscatterGGXReflection(const MultiscatterSetup& se
       ggx_(setup_.alpha_x, setup_.alpha_y),
       single_probability_(cycles_ggx_albedo(std::sqrt(setup_.alpha_x * setup_.alpha_y))) {}
 
-RGB MultiscatterGGXReflection::eval(Vec3 wo, Vec3 wi) const {
-  if (!same_hemisphere(wo, wi)) return RGB(0.0f);
+namespace {
+
+// The pair Cycles' glossy eval walks: from the shallower direction (wo mirrored up first).
+bool reflection_walk(Vec3 wo, Vec3 wi, Vec3* start, Vec3* end) {
+  if (!same_hemisphere(wo, wi)) return false;
   if (wo.z < 0.0f) {
     wo.z = -wo.z;
     wi.z = -wi.z;
   }
-  // Cycles walks from the shallower direction: f(wo, wi) = W(start, end)/cos θ(end).
   const bool from_wo = starts_from(wo, wi, wo.z, wi.z);
-  const Vec3& start = from_wo ? wo : wi;
-  const Vec3& end = from_wo ? wi : wo;
-  const RGB w = averaged_walks<false>(walk_of(setup_, false), start, end, true);
-  return w / end.z;
+  *start = from_wo ? wo : wi;
+  *end = from_wo ? wi : wo;
+  return true;
+}
+
+}  // namespace
+
+// f(wo, wi) = W(start, end)/cos θ(end), W the walk's estimate of f·cos θ(end).
+RGB MultiscatterGGXReflection::eval(Vec3 wo, Vec3 wi) const {
+  Vec3 start, end;
+  if (!reflection_walk(wo, wi, &start, &end)) return RGB(0.0f);
+  return averaged_walks<false>(walk_of(setup_, false), start, end, true) / end.z;
 }
 
 RGB MultiscatterGGXReflection::walk_f(Vec3 wo, Vec3 wi, PCG32& rng) const {
-  if (!same_hemisphere(wo, wi)) return RGB(0.0f);
-  if (wo.z < 0.0f) {
-    wo.z = -wo.z;
-    wi.z = -wi.z;
-  }
-  const bool from_wo = starts_from(wo, wi, wo.z, wi.z);
-  const Vec3& start = from_wo ? wo : wi;
-  const Vec3& end = from_wo ? wi : wo;
+  Vec3 start, end;
+  if (!reflection_walk(wo, wi, &start, &end)) return RGB(0.0f);
   return walk_eval<false>(walk_of(setup_, false), start, end, true, rng) / end.z;
 }
 
@@ -531,48 +535,48 @@ float uniform_from_bits(Point2 u) {  // a third number for a choice, hashed from
   return static_cast<float>(h >> 40) * 0x1p-24f;
 }
 
-}  // namespace
-
-RGB MultiscatterGGXGlass::eval(Vec3 wo, Vec3 wi) const {
+// The walk Cycles' glass eval runs for (wo, wi): its parameters, start and end.
+struct GlassWalk {
+  Walk p;
+  Vec3 start, end;
+  bool end_outside;
+};
+bool glass_walk(const MultiscatterSetup& setup, Vec3 wo, Vec3 wi, GlassWalk* w) {
   GlassSide s;
-  if (!glass_side(wo, wi, setup_.eta, &s)) return RGB(0.0f);
-  Walk p = walk_of(setup_, true);
-  p.eta = s.eta;
+  if (!glass_side(wo, wi, setup.eta, &s)) return false;
+  w->p = walk_of(setup, true);
+  w->p.eta = s.eta;
   const bool transmission = s.wi.z < 0.0f;
   // Cycles' glass eval: a transmitted pair walks with the colour rule even for the Fresnel
   // closure (its first order then carries no colour).
-  if (transmission) p.use_fresnel = false;
-  Vec3 start = s.wo, end = s.wi;
+  if (transmission) w->p.use_fresnel = false;
+  w->end_outside = !transmission;
+  w->start = s.wo;
+  w->end = s.wi;
   if (transmission) {
-    if (-end.z < start.z) {  // Cycles' swap for transmission: start from -wi, end at -wo
-      start = -s.wi;
-      end = -s.wo;
+    if (-s.wi.z < s.wo.z) {  // Cycles' swap for transmission: start from -wi, end at -wo
+      w->start = -s.wi;
+      w->end = -s.wo;
     }
   } else if (!starts_from(s.wo, s.wi, s.wo.z, s.wi.z)) {
-    start = s.wi;
-    end = s.wo;
+    w->start = s.wi;
+    w->end = s.wo;
   }
-  return averaged_walks<true>(p, start, end, !transmission) / std::fabs(end.z);
+  return true;
+}
+
+}  // namespace
+
+RGB MultiscatterGGXGlass::eval(Vec3 wo, Vec3 wi) const {
+  GlassWalk w;
+  if (!glass_walk(setup_, wo, wi, &w)) return RGB(0.0f);
+  return averaged_walks<true>(w.p, w.start, w.end, w.end_outside) / std::fabs(w.end.z);
 }
 
 RGB MultiscatterGGXGlass::walk_f(Vec3 wo, Vec3 wi, PCG32& rng) const {
-  GlassSide s;
-  if (!glass_side(wo, wi, setup_.eta, &s)) return RGB(0.0f);
-  Walk p = walk_of(setup_, true);
-  p.eta = s.eta;
-  const bool transmission = s.wi.z < 0.0f;
-  if (transmission) p.use_fresnel = false;
-  Vec3 start = s.wo, end = s.wi;
-  if (transmission) {
-    if (-end.z < start.z) {
-      start = -s.wi;
-      end = -s.wo;
-    }
-  } else if (!starts_from(s.wo, s.wi, s.wo.z, s.wi.z)) {
-    start = s.wi;
-    end = s.wo;
-  }
-  return walk_eval<true>(p, start, end, !transmission, rng) / std::fabs(end.z);
+  GlassWalk w;
+  if (!glass_walk(setup_, wo, wi, &w)) return RGB(0.0f);
+  return walk_eval<true>(w.p, w.start, w.end, w.end_outside, rng) / std::fabs(w.end.z);
 }
 
 RGB MultiscatterGGXGlass::walk_sample(Vec3 wo, PCG32& rng, Vec3* wi) const {
