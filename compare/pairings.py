@@ -19,6 +19,7 @@ EXACT_IN = {
     "lambertian": {"BXDF_LAB", "ANALYTIC", "CYCLES", "POVRAY_RENDER"},
     "cycles_oren_nayar": CORE | {"CYCLES"},
     "cycles_glossy": CORE | {"CYCLES"},
+    "cycles_principled": CORE | {"CYCLES"},  # the sweeps use no subsurface (approximate then)
 }
 
 

@@ -96,8 +96,9 @@ BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
   out.f = s.f;
   out.pdf = s.pdf;
 
-  if (picked->is_delta()) {
-    // A delta lobe cannot be evaluated by the others; only the selection probability changes.
+  if (picked->is_delta() || (s.flags & kSpecular)) {
+    // A delta lobe (a delta model, or the delta part of a mixed one such as a Principled BSDF
+    // at roughness 0) cannot be evaluated by the others; only the selection probability changes.
     out.pdf /= static_cast<float>(matching);
     // Geometry still decides: a sampled reflection that ends up below the geometric surface (or
     // a refraction that stays above it), possible with shading normals, is dropped.
