@@ -143,6 +143,17 @@ std::vector<Config> configs() {
       }
     }
   }
+  if (find_model("cycles_principled")) {
+    // Every closure on: diffuse, sheen, specular, glass reflection and refraction, clearcoat.
+    ParamSet p;
+    p.set("metallic", 0.2);
+    p.set("sheen", 0.5);
+    p.set("clearcoat", 0.5);
+    p.set("clearcoat_roughness", 0.2);
+    p.set("transmission", 0.5);
+    p.set("transmission_roughness", 0.2);
+    out.push_back({"cycles_principled", "all_lobes", p});
+  }
   return out;
 }
 

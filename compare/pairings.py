@@ -23,6 +23,7 @@ EXACT_IN = {
     "cycles_oren_nayar": CORE | {"CYCLES"},
     "cycles_glossy": CORE | {"CYCLES"},
     NODES: {"BXDF_LAB", "CYCLES"},
+    "cycles_principled": CORE | {"CYCLES"},  # the sweeps use no subsurface (approximate then)
 }
 
 

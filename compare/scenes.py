@@ -115,6 +115,49 @@ def sweep_oren_nayar_sigma():
         max_bounces=0, spp=16, resolution=(256, 80), tags=("sweep",))
 
 
+def _principled_grid(name, description, rows):
+    """Rows (top to bottom) of five Principled spheres; each row is a list of parameter dicts."""
+    spheres = []
+    for j, row in enumerate(rows):
+        for i, params in enumerate(row):
+            label = "_".join(f"{k}{v}" for k, v in sorted(params.items())).replace(".", "")
+            spheres.append(Sphere(f"sphere_{j}_{i}", (-2.0 + 1.0 * i, 0.0, 1.0 * (len(rows) - 1) / 2 - j),
+                                  0.42, Material(f"principled_{j}_{i}_{label}"[:60], "cycles_principled",
+                                                 {"base_color": (0.8, 0.45, 0.25), **params})))
+    return SceneSpec(
+        name=name, description=description,
+        camera=Camera(location=(0.0, -11.0, 0.0), look_at=(0.0, 0.0, 0.0), lens_mm=50.0),
+        objects=tuple(spheres), lights=(PointLight(location=(2.0, -7.0, 4.0), intensity=120.0),),
+        max_bounces=0, spp=16, resolution=(200, 40 * len(rows) + 40), tags=("sweep",))
+
+
+def sweep_principled_metallic_roughness():
+    roughness = (0.1, 0.25, 0.4, 0.6, 0.85)
+    return _principled_grid(
+        "sweep_principled_metallic_roughness",
+        "Cycles Principled spheres: metallic 0, 0.5, 1 (rows) x roughness 0.1-0.85 (columns)",
+        [[{"metallic": m, "roughness": r} for r in roughness] for m in (0.0, 0.5, 1.0)])
+
+
+def sweep_principled_lobes():
+    # Anisotropy, transmission and multiscatter rows are not here: see the README's findings.
+    return _principled_grid(
+        "sweep_principled_lobes",
+        "Cycles Principled rows: specular and specular tint; sheen and sheen tint; clearcoat and "
+        "clearcoat roughness",
+        [
+            [{"specular": 0.0}, {"specular": 0.5}, {"specular": 1.0},
+             {"specular": 1.0, "specular_tint": 0.5}, {"specular": 1.0, "specular_tint": 1.0}],
+            [{"sheen": 0.5, "roughness": 0.8}, {"sheen": 1.0, "roughness": 0.8},
+             {"sheen": 1.0, "sheen_tint": 0.0, "roughness": 0.8},
+             {"sheen": 1.0, "sheen_tint": 1.0, "roughness": 0.8},
+             {"sheen": 1.0, "roughness": 0.8, "metallic": 0.5}],
+            [{"clearcoat": 0.5}, {"clearcoat": 1.0}, {"clearcoat": 1.0, "clearcoat_roughness": 0.2},
+             {"clearcoat": 1.0, "clearcoat_roughness": 0.5},
+             {"clearcoat": 1.0, "clearcoat_roughness": 0.5, "metallic": 1.0}],
+        ])
+
+
 def _cornell_walls():
     white = Material("cornell_white", "lambertian", {"reflectance": (0.73, 0.73, 0.73)})
     red = Material("cornell_red", "lambertian", {"reflectance": (0.63, 0.065, 0.05)})
@@ -159,7 +202,8 @@ def cornell():
 SCENES = {f().name: f for f in (
     lit_lambertian, lit_cycles_oren_nayar, lit_oren_nayar, lit_cycles_glossy_ggx,
     lit_cycles_glossy_beckmann, sun_sphere, furnace, sweep_glossy_roughness,
-    sweep_oren_nayar_sigma, cornell)}
+    sweep_oren_nayar_sigma, cornell, sweep_principled_metallic_roughness,
+    sweep_principled_lobes)}
 
 DEFAULT_SCENES = tuple(SCENES) + tuple(f().name for f in DEFAULT_NODE_SCENES)
 SCENES.update({f().name: f for f in NODE_SCENES})

@@ -128,6 +128,29 @@ def _microfacet(params):
                    {"distribution": cycles_distribution}, diffuse if max(diffuse) > 0.0 else None)
 
 
+def principled_socket(param):
+    """The Principled BSDF socket of a cycles_principled parameter (snake_case of its name)."""
+    return "IOR" if param == "ior" else param.replace("_", " ").title()
+
+
+def _principled(params):
+    """cycles_principled → Cycles' own Principled BSDF, every parameter on its socket."""
+    inputs = {}
+    for key, value in params.items():
+        if key == "distribution":
+            continue
+        inputs[principled_socket(key)] = _rgba(value) if isinstance(value, (tuple, list)) else float(value)
+    subsurface = float(params["subsurface"])
+    text = (f"Principled BSDF, {params['distribution']}, every input on its socket; Cycles' own "
+            "closures")
+    if subsurface > 0.0:
+        text += (f"; subsurface {subsurface:g}: BxDF Lab mixes the subsurface colour into the "
+                 "diffuse (Cycles' rule after a diffuse bounce), Cycles scatters below the surface "
+                 "on camera paths")
+    return Mapping("ShaderNodeBsdfPrincipled", APPROXIMATE if subsurface > 0.0 else EXACT, text,
+                   inputs, {"distribution": params["distribution"].upper()})
+
+
 def mapping_for(name, params, model):
     """The Mapping for model `name` with validated `params` (`model` is the bxdf object)."""
     if name == "lambertian":
@@ -185,6 +208,8 @@ def mapping_for(name, params, model):
                         "IOR": ior},
                        {"distribution": str(params.get("distribution", "sharp")).upper()
                         if alpha > 0 else "SHARP"})
+    if name == "cycles_principled":
+        return _principled(params)
     # Anything else (Lafortune fits, measured data, future models): Principled with the model's
     # hemispherical albedo as base colour.
     albedo = _albedo_colour(model)

@@ -116,10 +116,35 @@ def _finish_for(name, params, model):
         return (tuple(scale * c for c in params["color"]), 1.0, None, None, APPROXIMATE,
                 f"Cycles' Oren–Nayar → Lambert with its constant term (colour × {scale:.4g}); "
                 "POV has no Oren–Nayar")
+    if name == "cycles_principled":
+        return _principled_finish(params)
     albedo = tuple(float(c) for c in np.asarray(model.rho_hh(4096)).reshape(3))
     return (albedo, 1.0, None, None, APPROXIMATE,
             f"{name} → Lambert with the hemispherical albedo ({albedo[0]:.3f}, {albedo[1]:.3f}, "
             f"{albedo[2]:.3f})")
+
+
+def _principled_finish(params):
+    """Principled → POV: the diffuse closure as Lambert (weight (1 − metallic)(1 − transmission),
+    base mixed with the subsurface colour), the specular as a Blinn highlight of GGX α = r²
+    whose strength is F0's, and metallic as a mirror tinted by the base colour."""
+    subsurface = float(params["subsurface"])
+    base = (1.0 - subsurface) * np.asarray(params["base_color"], dtype=float) + \
+        subsurface * np.asarray(params["subsurface_color"], dtype=float)
+    metallic = float(params["metallic"])
+    transmission = float(params["transmission"])
+    diffuse_weight = (1.0 - metallic) * (1.0 - transmission)
+    alpha = max(float(params["roughness"]) ** 2, 1e-6)
+    exponent = 2.0 / (alpha * alpha) - 2.0
+    f0 = 0.08 * float(params["specular"]) * (1.0 - metallic) + metallic * float(base.max())
+    strength = f0 * (exponent + 2.0) / 8.0
+    mirror = tuple(metallic * base) if metallic > 0.0 and params["roughness"] < 0.1 else None
+    return (tuple(base * diffuse_weight), 1.0 if diffuse_weight > 0.0 else 0.0,
+            {"exponent": exponent, "strength": strength}, mirror, APPROXIMATE,
+            f"Principled → Lambert × (1 − metallic)(1 − transmission) = {diffuse_weight:.3g}, "
+            f"Blinn highlight exponent {exponent:.4g} with F0 {f0:.3g}"
+            + ("" if mirror is None else ", a metallic mirror")
+            + "; POV has no sheen, clearcoat, transmission or Fresnel")
 
 
 def hardness_for_exponent(exponent):

@@ -123,8 +123,9 @@ BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
   out.wi = frame.to_world(s.wi);
   out.flags = s.flags != 0 ? s.flags : b.flags();
 
-  if (b.is_delta()) {
-    // A delta lobe cannot be evaluated by the others; only the selection probability changes.
+  if (b.is_delta() || (s.flags & kSpecular)) {
+    // A delta lobe (a delta model, or the delta part of a mixed one such as a Principled BSDF
+    // at roughness 0) cannot be evaluated by the others; only the selection probability changes.
     out.f = weights_[picked] * s.f;
     out.f_cos = out.f * abs_cos_theta(s.wi);
     out.pdf = s.pdf * chance;

@@ -20,6 +20,7 @@ std::vector<ModelInfo> builtin_models() {
       lafortune_model(),
       cycles_oren_nayar_model(),
       cycles_glossy_model(),
+      cycles_principled_model(),
       measured_model(),
   };
 }

@@ -76,6 +76,11 @@ def test_lambertian_becomes_an_exact_diffuse_bsdf(material):
     ("cycles_oren_nayar", {"color": (0.7, 0.5, 0.3), "roughness": 0.6}),
     ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.6, "distribution": "ggx"}),
     ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.6, "distribution": "beckmann"}),
+    ("cycles_principled", {"base_color": (0.7, 0.5, 0.3), "metallic": 0.3, "specular": 0.6,
+                           "specular_tint": 0.5, "roughness": 0.4, "sheen": 0.6, "sheen_tint": 0.3,
+                           "clearcoat": 0.7, "clearcoat_roughness": 0.3}),
+    ("cycles_principled", {"base_color": (0.2, 0.6, 0.8), "roughness": 0.7, "transmission": 0.4,
+                           "ior": 1.6, "specular": 0.3}),
     ("microfacet", {"reflectance": (0.7, 0.5, 0.3), "distribution": "ggx", "alpha_x": 0.4,
                     "alpha_y": 0.4, "shadowing": "smith", "fresnel": "none"}),
     ("microfacet", {"reflectance": (0.7, 0.5, 0.3), "distribution": "beckmann", "alpha_x": 0.2,
@@ -134,3 +139,33 @@ def test_anisotropic_microfacet_maps_to_cycles_anisotropy(material):
     r = roughness ** 2
     assert (r * (1 - anisotropy), r / (1 - anisotropy)) == pytest.approx((0.1, 0.4), rel=1e-5)
     assert material.bxdf_lab.cycles_label == "exact"
+
+
+def test_principled_maps_every_parameter_to_its_socket(bxdf, material):
+    params = {"base_color": (0.7, 0.5, 0.3), "subsurface": 0.0, "metallic": 0.4, "specular": 0.6,
+              "specular_tint": 0.2, "roughness": 0.35, "anisotropic": 0.5,
+              "anisotropic_rotation": 0.25, "sheen": 0.3, "sheen_tint": 0.6, "clearcoat": 0.8,
+              "clearcoat_roughness": 0.2, "ior": 1.33, "transmission": 0.1,
+              "transmission_roughness": 0.4, "distribution": "multi_ggx"}
+    model = api.assign(material, "cycles_principled", **params)
+    _set_up(material)
+    assert material.bxdf_lab.cycles_label == "exact"
+    bsdf = material.node_tree.nodes["Principled BSDF"]
+    assert bsdf.distribution == "MULTI_GGX"
+    declared = [p["name"] for p in bxdf.models()["cycles_principled"]]
+    for name in declared:
+        if name == "distribution":
+            continue
+        socket = bsdf.inputs["IOR" if name == "ior" else name.replace("_", " ").title()]
+        value = dict(model.params)[name]
+        if name in params:
+            assert value == pytest.approx(params[name]), name
+        if isinstance(value, (tuple, list)):
+            assert tuple(socket.default_value)[:3] == pytest.approx(tuple(value)), name
+        else:
+            assert socket.default_value == pytest.approx(value), name
+    # Subsurface: BxDF Lab has no subsurface scattering, so the pairing is approximate.
+    api.assign(material, "cycles_principled", subsurface=0.5)
+    _set_up(material)
+    assert material.bxdf_lab.cycles_label == "approximate"
+    assert "subsurface" in material.bxdf_lab.cycles_mapping

@@ -20,6 +20,12 @@ struct GridEntry {
   // (the seed's unnormalised models) record here the largest ρhd over incident_directions()
   // that we measured, so that the energy test notices when the gain changes.
   double recorded_max_albedo = 0.0;
+  // Why f(wo, wi) ≠ f(wi, wo) by the model's own formula (e.g. weights that depend on wo);
+  // empty for entries the reciprocity test checks.
+  std::string not_reciprocal;
+  // f averages a few random walks (multiple-scattering GGX): a fixed function, but noisy at
+  // the scale adaptive quadrature refines to, so the energy test integrates it by sampling only.
+  bool stochastic_f = false;
   bool energy_conserving() const { return recorded_max_albedo == 0.0; }
 };
 

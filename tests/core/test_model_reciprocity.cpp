@@ -44,6 +44,7 @@ TEST_P(ModelReciprocity, FIsReciprocal) {
   const std::string& model = GetParam();
   static const std::vector<std::pair<Vec3, Vec3>> pairs = direction_pairs();
   for (const GridEntry& e : grid_for(model)) {
+    if (!e.not_reciprocal.empty()) continue;  // the entry says why
     const BxDFPtr m = make_entry(model, e);
     float eta_outside = 1.0f, eta_inside = 1.0f;
     const bool refracts = refractive_indices(*m, &eta_outside, &eta_inside);

@@ -66,6 +66,7 @@ ModelInfo microfacet_transmission_model();
 ModelInfo lafortune_model();
 ModelInfo cycles_oren_nayar_model();
 ModelInfo cycles_glossy_model();
+ModelInfo cycles_principled_model();
 ModelInfo measured_model();
 
 }  // namespace bxdf
