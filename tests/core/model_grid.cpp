@@ -160,6 +160,17 @@ std::map<std::string, std::vector<GridEntry>> build_grid() {
                                                {"anisotropy", -0.6}, {"color", 1.0}})),
       entry("ggx_singular_mirror", params({{"distribution", "ggx"}, {"roughness", 0.0},
                                            {"color", 1.0}})),
+      entry("sharp", params({{"distribution", "sharp"}, {"roughness", 0.5},
+                             {"color", RGBValue{1.0, 0.7, 0.4}}})),
+      // n = 2/α² − 2: roughness 0.45 gives n ≈ 48, roughness 0.6 with anisotropy 0.5 gives
+      // nx ≈ 60, ny ≈ 1.9.
+      entry("ashikhmin_shirley_iso", params({{"distribution", "ashikhmin_shirley"},
+                                             {"roughness", 0.45}, {"color", 1.0}})),
+      entry("ashikhmin_shirley_aniso", params({{"distribution", "ashikhmin_shirley"},
+                                               {"roughness", 0.6}, {"anisotropy", 0.5},
+                                               {"color", RGBValue{0.9, 0.8, 1.0}}})),
+      entry("ashikhmin_shirley_rough1", params({{"distribution", "ashikhmin_shirley"},
+                                                {"roughness", 1.0}, {"color", 1.0}})),
   };
   // Cornell measurements shipped in data/measured (the model's default is acryl_blue).
   g["measured"] = {

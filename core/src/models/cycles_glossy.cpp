@@ -1,5 +1,7 @@
 #include "bxdf/models/cycles_glossy.h"
 
+#include "bxdf/models/cycles_glossy_ashikhmin_shirley.h"
+
 #include "bxdf/microfacet/beckmann.h"
 #include "bxdf/microfacet/ggx.h"
 #include "bxdf/model_support.h"
@@ -31,11 +33,11 @@ void cycles_alphas(float roughness, float anisotropy, float* alpha_x, float* alp
 ModelInfo cycles_glossy_model() {
   ModelInfo m;
   m.name = "cycles_glossy";
-  m.doc = "Cycles 3.4 Glossy/Anisotropic BSDF: GGX or Beckmann, separable Smith G, no Fresnel";
+  m.doc = "Cycles 3.4 Glossy/Anisotropic BSDF: GGX, Beckmann, Ashikhmin-Shirley or sharp, no Fresnel";
   m.params = {
       rgb_param("color", {0.8, 0.8, 0.8}, 0.0, 1.0, "Colour: a plain factor (no Fresnel)"),
-      enum_param("distribution", "ggx", {"ggx", "beckmann"},
-                 "Microfacet distribution (Cycles' GGX or Beckmann)"),
+      enum_param("distribution", "ggx", {"ggx", "beckmann", "sharp", "ashikhmin_shirley"},
+                 "Cycles' distribution: GGX, Beckmann, Ashikhmin-Shirley, or sharp (a mirror)"),
       float_param("roughness", 0.5, 0.0, 1.0, "",
                   "Cycles roughness; alpha = roughness^2 (a mirror when alpha_x*alpha_y <= 1e-7)"),
       float_param("anisotropy", 0.0, -1.0, 1.0, "",
@@ -45,12 +47,21 @@ ModelInfo cycles_glossy_model() {
     float ax = 0.0f, ay = 0.0f;
     cycles_alphas(static_cast<float>(p.number("roughness")),
                   static_cast<float>(p.number("anisotropy")), &ax, &ay);
-    const bool mirror = ax * ay <= kCyclesSingularAlpha2;
+    const std::string& distribution = p.string("distribution");
     const RGB color = to_rgb(p.rgb("color"));
+    if (distribution == "ashikhmin_shirley") {
+      // Cycles clamps this distribution's α to [1e-4, 1] and calls it singular at the floor.
+      using AS = CyclesGlossyAshikhminShirley;
+      ax = clamp(ax, AS::kMinAlpha, AS::kMaxAlpha);
+      ay = clamp(ay, AS::kMinAlpha, AS::kMaxAlpha);
+      if (std::max(ax, ay) > AS::kMinAlpha) return std::make_unique<AS>(color, ax, ay);
+      return std::make_unique<CyclesGlossy<microfacet::GGX>>(color, microfacet::GGX(), true);
+    }
+    const bool mirror = distribution == "sharp" || ax * ay <= kCyclesSingularAlpha2;
     // Above the singular threshold a single α can still be below microfacet::kMinAlpha
     // (strong anisotropy at low roughness); the distribution raises it to 1e-4, which only
     // changes lobes narrower than float directions can resolve.
-    if (p.string("distribution") == "beckmann")
+    if (distribution == "beckmann")
       return std::make_unique<CyclesGlossy<microfacet::Beckmann>>(
           color, microfacet::Beckmann(ax, ay), mirror);
     return std::make_unique<CyclesGlossy<microfacet::GGX>>(color, microfacet::GGX(ax, ay), mirror);
