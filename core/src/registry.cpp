@@ -18,6 +18,11 @@ std::vector<ModelInfo> builtin_models() {
       lafortune_model(),
       cycles_oren_nayar_model(),
       cycles_glossy_model(),
+      cycles_glass_model(),
+      cycles_refraction_model(),
+      cycles_translucent_model(),
+      cycles_transparent_model(),
+      cycles_velvet_model(),
       measured_model(),
   };
 }

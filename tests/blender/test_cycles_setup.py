@@ -76,6 +76,11 @@ def test_lambertian_becomes_an_exact_diffuse_bsdf(material):
     ("cycles_oren_nayar", {"color": (0.7, 0.5, 0.3), "roughness": 0.6}),
     ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.6, "distribution": "ggx"}),
     ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.6, "distribution": "beckmann"}),
+    ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.6,
+                       "distribution": "ashikhmin_shirley"}),
+    ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.5, "anisotropy": 0.4,
+                       "distribution": "ashikhmin_shirley"}),
+    ("cycles_velvet", {"color": (0.7, 0.5, 0.3), "sigma": 0.5}),
     ("microfacet", {"reflectance": (0.7, 0.5, 0.3), "distribution": "ggx", "alpha_x": 0.4,
                     "alpha_y": 0.4, "shadowing": "smith", "fresnel": "none"}),
     ("microfacet", {"reflectance": (0.7, 0.5, 0.3), "distribution": "beckmann", "alpha_x": 0.2,
@@ -134,3 +139,32 @@ def test_anisotropic_microfacet_maps_to_cycles_anisotropy(material):
     r = roughness ** 2
     assert (r * (1 - anisotropy), r / (1 - anisotropy)) == pytest.approx((0.1, 0.4), rel=1e-5)
     assert material.bxdf_lab.cycles_label == "exact"
+
+
+@pytest.mark.parametrize("model_name, params, node_type, sockets", [
+    ("cycles_glass", {"color": (0.9, 0.8, 0.7), "distribution": "ggx", "roughness": 0.3,
+                      "ior": 1.5}, "BSDF_GLASS", {"Roughness": 0.3, "IOR": 1.5}),
+    ("cycles_glass", {"distribution": "multi_ggx", "roughness": 0.6, "ior": 1.33}, "BSDF_GLASS",
+     {"Roughness": 0.6, "IOR": 1.33}),
+    ("cycles_refraction", {"distribution": "sharp", "ior": 2.4}, "BSDF_REFRACTION",
+     {"IOR": 2.4}),
+    ("cycles_translucent", {"color": (0.9, 0.8, 0.7)}, "BSDF_TRANSLUCENT", {}),
+    ("cycles_transparent", {"color": (0.9, 0.8, 0.7)}, "BSDF_TRANSPARENT", {}),
+    ("cycles_velvet", {"color": (0.9, 0.8, 0.7), "sigma": 0.25}, "BSDF_VELVET", {"Sigma": 0.25}),
+    ("cycles_glossy", {"distribution": "sharp", "anisotropy": 0.5}, "BSDF_GLOSSY", {}),
+    ("cycles_glossy", {"distribution": "multi_ggx", "anisotropy": 0.5}, "BSDF_ANISOTROPIC",
+     {"Anisotropy": 0.5}),
+])
+def test_cycles_node_models_map_onto_their_node_exactly(model_name, params, node_type, sockets,
+                                                        material):
+    api.assign(material, model_name, **params)
+    _set_up(material)
+    assert material.bxdf_lab.cycles_label == "exact"
+    node = material.node_tree.nodes["Material Output"].inputs["Surface"].links[0].from_node
+    assert node.type == node_type
+    if "distribution" in params:
+        assert node.distribution == params["distribution"].upper()
+    for socket, value in sockets.items():
+        assert node.inputs[socket].default_value == pytest.approx(value)
+    if "color" in params:
+        assert tuple(node.inputs["Color"].default_value) == pytest.approx((*params["color"], 1.0))

@@ -33,11 +33,15 @@ void cycles_alphas(float roughness, float anisotropy, float* alpha_x, float* alp
 ModelInfo cycles_glossy_model() {
   ModelInfo m;
   m.name = "cycles_glossy";
-  m.doc = "Cycles 3.4 Glossy/Anisotropic BSDF: GGX, Beckmann, Ashikhmin-Shirley or sharp, no Fresnel";
+  m.doc =
+      "Cycles 3.4 Glossy/Anisotropic BSDF: GGX, Beckmann, Ashikhmin-Shirley, multiscatter GGX or "
+      "sharp, no Fresnel";
   m.params = {
       rgb_param("color", {0.8, 0.8, 0.8}, 0.0, 1.0, "Colour: a plain factor (no Fresnel)"),
-      enum_param("distribution", "ggx", {"ggx", "beckmann", "sharp", "ashikhmin_shirley"},
-                 "Cycles' distribution: GGX, Beckmann, Ashikhmin-Shirley, or sharp (a mirror)"),
+      enum_param("distribution", "ggx",
+                 {"ggx", "beckmann", "sharp", "ashikhmin_shirley", "multi_ggx"},
+                 "Cycles' distribution: GGX, Beckmann, Ashikhmin-Shirley, multiscatter GGX, or "
+                 "sharp (a mirror)"),
       float_param("roughness", 0.5, 0.0, 1.0, "",
                   "Cycles roughness; alpha = roughness^2 (a mirror when alpha_x*alpha_y <= 1e-7)"),
       float_param("anisotropy", 0.0, -1.0, 1.0, "",
@@ -56,6 +60,14 @@ ModelInfo cycles_glossy_model() {
       ay = clamp(ay, AS::kMinAlpha, AS::kMaxAlpha);
       if (std::max(ax, ay) > AS::kMinAlpha) return std::make_unique<AS>(color, ax, ay);
       return std::make_unique<CyclesGlossy<microfacet::GGX>>(color, microfacet::GGX(), true);
+    }
+    if (distribution == "multi_ggx") {
+      // Blender compiles roughness <= 1e-4 as Sharp; above, Cycles' setup clamps α to
+      // [1e-4, 1] and the walk has no singular case.
+      if (p.number("roughness") <= 1e-4)
+        return std::make_unique<CyclesGlossy<microfacet::GGX>>(color, microfacet::GGX(), true);
+      return std::make_unique<CyclesMultiscatterGlossy>(color, clamp(ax, 1e-4f, 1.0f),
+                                                        clamp(ay, 1e-4f, 1.0f));
     }
     const bool mirror = distribution == "sharp" || ax * ay <= kCyclesSingularAlpha2;
     // Above the singular threshold a single α can still be below microfacet::kMinAlpha
