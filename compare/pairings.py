@@ -2,8 +2,10 @@
 which `approximate` (a best mapping: the diff is the finding). Facts from reference/renderers.md:
 
 - Lambert is exact everywhere (POV-Ray through the light calibration of engine_setup).
-- Cycles' own Oren-Nayar (`cycles_oren_nayar`) and Glossy (`cycles_glossy`: GGX/Beckmann, separable
-  Smith, F = 1) are exact between Cycles, BXDF_LAB and the analytic image (both from the core's f).
+- Cycles' own Oren-Nayar (`cycles_oren_nayar`), Glossy (`cycles_glossy`: GGX/Beckmann, separable
+  Smith, F = 1; Ashikhmin-Shirley; multiscatter GGX in expectation), Glass, Refraction,
+  Translucent, Transparent and Velvet (`cycles_*`) are exact between Cycles, BXDF_LAB and the
+  analytic image (both from the core's f).
 - Every model is exact between BXDF_LAB and ANALYTIC (both evaluate the core's f).
 - Everything else is approximate; so is any POV-Ray global illumination (radiosity is not a path
   tracer) and any scene without analytic truth where a model is approximate in one engine."""
@@ -19,6 +21,11 @@ EXACT_IN = {
     "lambertian": {"BXDF_LAB", "ANALYTIC", "CYCLES", "POVRAY_RENDER"},
     "cycles_oren_nayar": CORE | {"CYCLES"},
     "cycles_glossy": CORE | {"CYCLES"},
+    "cycles_glass": CORE | {"CYCLES"},
+    "cycles_refraction": CORE | {"CYCLES"},
+    "cycles_translucent": CORE | {"CYCLES"},
+    "cycles_transparent": CORE | {"CYCLES"},
+    "cycles_velvet": CORE | {"CYCLES"},
 }
 
 

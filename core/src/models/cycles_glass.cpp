@@ -3,6 +3,7 @@
 #include "bxdf/microfacet/beckmann.h"
 #include "bxdf/microfacet/ggx.h"
 #include "bxdf/model_support.h"
+#include "bxdf/models/cycles_multiscatter.h"
 #include "bxdf/registry.h"
 
 namespace bxdf {
@@ -30,8 +31,13 @@ std::unique_ptr<BxDF> make_cycles_dielectric(CyclesDielectricNode node, const Pa
       cycles_dielectric_inputs(distribution, static_cast<float>(p.number("roughness")),
                                static_cast<float>(p.number("ior")));
   if (in.sharp) return std::make_unique<CyclesSharpDielectric>(node, color, in.ior);
-  if (distribution == "multi_ggx")
-    return std::make_unique<CyclesMultiscatterGlass>(color, in.alpha, in.ior);
+  if (distribution == "multi_ggx") {
+    microfacet::MultiscatterSetup setup;
+    setup.alpha_x = setup.alpha_y = in.alpha;
+    setup.eta = in.ior;
+    return std::make_unique<CyclesMultiscatterGlass>(kReflection | kTransmission | kGlossy, color,
+                                                     setup);
+  }
   if (distribution == "beckmann")
     return std::make_unique<CyclesRoughDielectric<microfacet::Beckmann>>(
         node, color, microfacet::Beckmann(in.alpha, in.alpha), in.ior);

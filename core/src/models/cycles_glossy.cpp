@@ -1,6 +1,7 @@
 #include "bxdf/models/cycles_glossy.h"
 
 #include "bxdf/models/cycles_glossy_ashikhmin_shirley.h"
+#include "bxdf/models/cycles_multiscatter.h"
 
 #include "bxdf/microfacet/beckmann.h"
 #include "bxdf/microfacet/ggx.h"
@@ -66,8 +67,10 @@ ModelInfo cycles_glossy_model() {
       // [1e-4, 1] and the walk has no singular case.
       if (p.number("roughness") <= 1e-4)
         return std::make_unique<CyclesGlossy<microfacet::GGX>>(color, microfacet::GGX(), true);
-      return std::make_unique<CyclesMultiscatterGlossy>(color, clamp(ax, 1e-4f, 1.0f),
-                                                        clamp(ay, 1e-4f, 1.0f));
+      microfacet::MultiscatterSetup setup;
+      setup.alpha_x = clamp(ax, 1e-4f, 1.0f);
+      setup.alpha_y = clamp(ay, 1e-4f, 1.0f);
+      return std::make_unique<CyclesMultiscatterGlossy>(kReflection | kGlossy, color, setup);
     }
     const bool mirror = distribution == "sharp" || ax * ay <= kCyclesSingularAlpha2;
     // Above the singular threshold a single α can still be below microfacet::kMinAlpha

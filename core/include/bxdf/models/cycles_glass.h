@@ -25,7 +25,7 @@
 
 #include "bxdf/bxdf.h"
 #include "bxdf/microfacet/cycles_lobes.h"
-#include "bxdf/microfacet/multiscatter_ggx.h"
+#include "bxdf/microfacet/multiscatter_ggx.h"  // cycles_fresnel_dielectric_cos
 #include "bxdf/sampling.h"
 #include "bxdf/specular.h"
 
@@ -149,33 +149,6 @@ class CyclesSharpDielectric final : public BxDFImpl<CyclesSharpDielectric> {
   CyclesDielectricNode node_;
   RGB color_;
   float ior_;
-};
-
-// Multiscatter GGX glass (Cycles' MULTI_GGX_GLASS closure, one closure with the Fresnel term
-// inside its walk, weight = colour): the lobe of microfacet/multiscatter_ggx.h times the colour.
-class CyclesMultiscatterGlass final : public BxDFImpl<CyclesMultiscatterGlass> {
- public:
-  CyclesMultiscatterGlass(const RGB& color, float alpha, float ior)
-      : BxDFImpl(kReflection | kTransmission | kGlossy),
-        color_(color),
-        lobe_(setup(color, alpha, ior)) {}
-
-  RGB eval(const Vec3& wo, const Vec3& wi) const { return color_ * lobe_.eval(wo, wi); }
-  DirectionSample sample_direction(const Vec3& wo, Point2 u) const {
-    return lobe_.sample_direction(wo, u);
-  }
-  float density(const Vec3& wo, const Vec3& wi) const { return lobe_.density(wo, wi); }
-
- private:
-  static microfacet::MultiscatterSetup setup(const RGB& color, float alpha, float ior) {
-    microfacet::MultiscatterSetup s;
-    s.alpha_x = s.alpha_y = alpha;
-    s.eta = ior;
-    s.color = color;
-    return s;
-  }
-  RGB color_;
-  microfacet::MultiscatterGGXGlass lobe_;
 };
 
 }  // namespace bxdf

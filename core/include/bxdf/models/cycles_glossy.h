@@ -10,7 +10,6 @@
 
 #include "bxdf/bxdf.h"
 #include "bxdf/microfacet/cycles_lobes.h"
-#include "bxdf/microfacet/multiscatter_ggx.h"
 
 namespace bxdf {
 
@@ -74,32 +73,6 @@ class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
   RGB color_;
   cycles::ReflectionLobe<Distribution> lobe_;
   bool mirror_;
-};
-
-// Multiscatter GGX (Cycles' MULTI_GGX closure of the Glossy node, weight = colour, the walk's
-// bounces after the first tinted by the colour): the lobe of microfacet/multiscatter_ggx.h
-// times the colour. α as for GGX, clamped to [1e-4, 1] by Cycles' setup.
-class CyclesMultiscatterGlossy final : public BxDFImpl<CyclesMultiscatterGlossy> {
- public:
-  CyclesMultiscatterGlossy(const RGB& color, float alpha_x, float alpha_y)
-      : BxDFImpl(kReflection | kGlossy), color_(color), lobe_(setup(color, alpha_x, alpha_y)) {}
-
-  RGB eval(const Vec3& wo, const Vec3& wi) const { return color_ * lobe_.eval(wo, wi); }
-  DirectionSample sample_direction(const Vec3& wo, Point2 u) const {
-    return lobe_.sample_direction(wo, u);
-  }
-  float density(const Vec3& wo, const Vec3& wi) const { return lobe_.density(wo, wi); }
-
- private:
-  static microfacet::MultiscatterSetup setup(const RGB& color, float alpha_x, float alpha_y) {
-    microfacet::MultiscatterSetup s;
-    s.alpha_x = alpha_x;
-    s.alpha_y = alpha_y;
-    s.color = color;
-    return s;
-  }
-  RGB color_;
-  microfacet::MultiscatterGGXReflection lobe_;
 };
 
 }  // namespace bxdf

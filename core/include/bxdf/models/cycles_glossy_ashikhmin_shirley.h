@@ -36,7 +36,7 @@ class CyclesGlossyAshikhminShirley final : public BxDFImpl<CyclesGlossyAshikhmin
         sampler_(n_x_, n_y_) {}
 
   RGB eval(Vec3 wo, Vec3 wi) const {
-    if (!upper(&wo, &wi)) return RGB(0.0f);
+    if (!turn_pair_upward(&wo, &wi)) return RGB(0.0f);
     const Vec3 h = normalize(wi + wo);
     const float h_o = std::max(std::fabs(dot(h, wo)), 1e-6f);
     const float pump = 1.0f / std::max(1e-6f, h_o * std::max(std::max(wi.z, 1e-6f),
@@ -59,7 +59,7 @@ class CyclesGlossyAshikhminShirley final : public BxDFImpl<CyclesGlossyAshikhmin
   }
 
   float density(Vec3 wo, Vec3 wi) const {
-    if (!upper(&wo, &wi)) return 0.0f;
+    if (!turn_pair_upward(&wo, &wi)) return 0.0f;
     const Vec3 h = normalize(wi + wo);
     const float h_o = std::max(std::fabs(dot(h, wo)), 1e-6f);
     return norm_ * lobe(h) / h_o;
@@ -69,14 +69,6 @@ class CyclesGlossyAshikhminShirley final : public BxDFImpl<CyclesGlossyAshikhmin
   float exponent_y() const { return n_y_; }
 
  private:
-  // Mirrors a pair with wo below into the upper hemisphere; false unless both are above.
-  static bool upper(Vec3* wo, Vec3* wi) {
-    if (wo->z < 0.0f) {
-      wo->z = -wo->z;
-      wi->z = -wi->z;
-    }
-    return wo->z > 0.0f && wi->z > 0.0f;
-  }
   // cos θh^e, θh clamped as Cycles clamps it.
   float lobe(const Vec3& h) const {
     const float cos_h = std::max(h.z, 1e-6f);

@@ -21,7 +21,7 @@ class CyclesVelvet final : public BxDFImpl<CyclesVelvet> {
         inv_sigma2_(1.0f / (std::max(sigma, kMinSigma) * std::max(sigma, kMinSigma))) {}
 
   RGB eval(Vec3 wo, Vec3 wi) const {
-    if (!upper(&wo, &wi)) return RGB(0.0f);
+    if (!turn_pair_upward(&wo, &wi)) return RGB(0.0f);
     const Vec3 h = normalize(wi + wo);
     const float cos_h = h.z, h_o = std::fabs(dot(wo, h));
     if (!(std::fabs(cos_h) < 1.0f - 1e-5f && h_o > 1e-5f)) return RGB(0.0f);
@@ -46,13 +46,6 @@ class CyclesVelvet final : public BxDFImpl<CyclesVelvet> {
   }
 
  private:
-  static bool upper(Vec3* wo, Vec3* wi) {
-    if (wo->z < 0.0f) {
-      wo->z = -wo->z;
-      wi->z = -wi->z;
-    }
-    return wo->z > 0.0f && wi->z > 0.0f;
-  }
 
   RGB color_;
   float inv_sigma2_;
