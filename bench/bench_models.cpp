@@ -154,6 +154,15 @@ std::vector<Config> configs() {
     p.set("transmission_roughness", 0.2);
     out.push_back({"cycles_principled", "all_lobes", p});
   }
+  if (find_model("cycles_glass")) {
+    // The node's default roughness 0 is the delta form; the rough forms at roughness 0.3.
+    for (const char* dist : {"ggx", "beckmann", "multi_ggx"}) {
+      ParamSet p;
+      p.set("distribution", dist);
+      p.set("roughness", 0.3);
+      out.push_back({"cycles_glass", std::string(dist) + "_r0.3", p});
+    }
+  }
   return out;
 }
 

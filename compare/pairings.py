@@ -2,8 +2,10 @@
 which `approximate` (a best mapping: the diff is the finding). Facts from reference/renderers.md:
 
 - Lambert is exact everywhere (POV-Ray through the light calibration of engine_setup).
-- Cycles' own Oren-Nayar (`cycles_oren_nayar`) and Glossy (`cycles_glossy`: GGX/Beckmann, separable
-  Smith, F = 1) are exact between Cycles, BXDF_LAB and the analytic image (both from the core's f).
+- Cycles' own Oren-Nayar (`cycles_oren_nayar`), Glossy (`cycles_glossy`: GGX/Beckmann, separable
+  Smith, F = 1; Ashikhmin-Shirley; multiscatter GGX in expectation), Glass, Refraction,
+  Translucent, Transparent and Velvet (`cycles_*`) are exact between Cycles, BXDF_LAB and the
+  analytic image (both from the core's f).
 - Every model is exact between BXDF_LAB and ANALYTIC (both evaluate the core's f).
 - A Blender node material (scene_spec.NODES) is exact between BXDF_LAB and Cycles: the add-on
   translates the node tree Cycles renders (the driver records the translation's coverage as the
@@ -24,6 +26,11 @@ EXACT_IN = {
     "cycles_glossy": CORE | {"CYCLES"},
     NODES: {"BXDF_LAB", "CYCLES"},
     "cycles_principled": CORE | {"CYCLES"},  # the sweeps use no subsurface (approximate then)
+    "cycles_glass": CORE | {"CYCLES"},
+    "cycles_refraction": CORE | {"CYCLES"},
+    "cycles_translucent": CORE | {"CYCLES"},
+    "cycles_transparent": CORE | {"CYCLES"},
+    "cycles_velvet": CORE | {"CYCLES"},
 }
 
 

@@ -63,6 +63,49 @@ def lit_cycles_glossy_beckmann():
                                  "roughness": 0.3}))
 
 
+def lit_cycles_glossy_ashikhmin_shirley():
+    return _lit_sphere("lit_cycles_glossy_ashikhmin_shirley",
+                       "Cycles Glossy Ashikhmin-Shirley, roughness 0.4, one point light",
+                       Material("glossy_as_04", "cycles_glossy",
+                                {"color": (0.9, 0.9, 0.9), "distribution": "ashikhmin_shirley",
+                                 "roughness": 0.4}))
+
+
+def lit_cycles_velvet():
+    return _lit_sphere("lit_cycles_velvet", "Cycles Velvet, sigma 0.5, one point light",
+                       Material("velvet_05", "cycles_velvet",
+                                {"color": (0.8, 0.5, 0.6), "sigma": 0.5}), spp=64)
+
+
+def cycles_glass_room():
+    """Glass, refraction, translucent and velvet spheres in the Cornell room with global
+    illumination: every material is one Cycles node, so BXDF_LAB and CYCLES must agree."""
+    ior = 1.45
+    materials = (
+        Material("glass_sharp", "cycles_glass",
+                 {"color": (1.0, 1.0, 1.0), "distribution": "sharp", "ior": ior}),
+        Material("refraction_ggx", "cycles_refraction",
+                 {"color": (0.9, 0.95, 1.0), "distribution": "ggx", "roughness": 0.3, "ior": ior}),
+        Material("glass_beckmann", "cycles_glass",
+                 {"color": (1.0, 0.95, 0.8), "distribution": "beckmann", "roughness": 0.3,
+                  "ior": ior}),
+        Material("translucent", "cycles_translucent", {"color": (0.8, 0.6, 0.4)}),
+        Material("velvet", "cycles_velvet", {"color": (0.5, 0.6, 0.9), "sigma": 0.4}),
+    )
+    places = ((-0.55, 0.4), (0.0, 0.4), (0.55, 0.4), (-0.3, -0.35), (0.3, -0.35))
+    spheres = tuple(Sphere(f"ball_{m.name}", (x, y, 0.24), 0.24, m)
+                    for (x, y), m in zip(places, materials))
+    return SceneSpec(
+        name="cycles_glass_room",
+        description="Cornell-like room with Cycles' Glass (sharp, Beckmann 0.3), Refraction (GGX "
+                    "0.3), Translucent and Velvet spheres, ior 1.45, global illumination "
+                    "(8 bounces), one point light",
+        camera=Camera(location=(0.0, -3.9, 1.0), look_at=(0.0, 0.0, 0.6), lens_mm=45.0),
+        objects=_cornell_walls() + spheres,
+        lights=(PointLight(location=(0.0, -0.2, 1.6), intensity=1.5),),
+        max_bounces=8, spp=256, resolution=(128, 128), povray_radiosity=True, tags=("gi",))
+
+
 def sun_sphere():
     return SceneSpec(
         name="sun_sphere", description="Lambertian sphere under a sun (directional) light",
@@ -203,7 +246,8 @@ SCENES = {f().name: f for f in (
     lit_lambertian, lit_cycles_oren_nayar, lit_oren_nayar, lit_cycles_glossy_ggx,
     lit_cycles_glossy_beckmann, sun_sphere, furnace, sweep_glossy_roughness,
     sweep_oren_nayar_sigma, cornell, sweep_principled_metallic_roughness,
-    sweep_principled_lobes)}
+    sweep_principled_lobes, lit_cycles_glossy_ashikhmin_shirley, lit_cycles_velvet,
+    cycles_glass_room)}
 
 DEFAULT_SCENES = tuple(SCENES) + tuple(f().name for f in DEFAULT_NODE_SCENES)
 SCENES.update({f().name: f for f in NODE_SCENES})

@@ -1,7 +1,8 @@
 """The Cycles node tree closest to a BxDF Lab material, and whether it is exact.
 
 `exact` means Cycles 3.4 evaluates the same formula (reference/renderers.md: Lambert, Cycles' own
-Oren–Nayar, GGX/Beckmann with separable Smith and F = 1, sharp glass, Lambertian transmission);
+Oren–Nayar, GGX/Beckmann with separable Smith and F = 1, sharp glass, Lambertian transmission,
+and every `cycles_*` model, which is one Cycles node);
 `approximate` means the best mapping we know, and the mapping text says what was matched.
 """
 
@@ -151,6 +152,18 @@ def _principled(params):
                    inputs, {"distribution": params["distribution"].upper()})
 
 
+# Models that are a Cycles node exactly: node type and {socket: registry parameter}.
+_CYCLES_NODES = {
+    "cycles_glass": ("ShaderNodeBsdfGlass", {"Color": "color", "Roughness": "roughness",
+                                             "IOR": "ior"}),
+    "cycles_refraction": ("ShaderNodeBsdfRefraction", {"Color": "color", "Roughness": "roughness",
+                                                       "IOR": "ior"}),
+    "cycles_translucent": ("ShaderNodeBsdfTranslucent", {"Color": "color"}),
+    "cycles_transparent": ("ShaderNodeBsdfTransparent", {"Color": "color"}),
+    "cycles_velvet": ("ShaderNodeBsdfVelvet", {"Color": "color", "Sigma": "sigma"}),
+}
+
+
 def mapping_for(name, params, model):
     """The Mapping for model `name` with validated `params` (`model` is the bxdf object)."""
     if name == "lambertian":
@@ -175,13 +188,21 @@ def mapping_for(name, params, model):
         anisotropy = float(params["anisotropy"])
         inputs = {"Color": _rgba(params["color"]), "Roughness": float(params["roughness"])}
         node = "ShaderNodeBsdfGlossy"
-        if anisotropy != 0.0:
+        if anisotropy != 0.0 and params["distribution"] != "sharp":  # a mirror has no anisotropy
             inputs["Anisotropy"] = anisotropy
             node = "ShaderNodeBsdfAnisotropic"
         return Mapping(node, EXACT,
                        f"Cycles' own {params['distribution']}: roughness {params['roughness']:g}, "
                        f"anisotropy {anisotropy:g}", inputs,
                        {"distribution": params["distribution"].upper()})
+    if name in _CYCLES_NODES:
+        node, sockets = _CYCLES_NODES[name]
+        inputs = {socket: (_rgba(params[key]) if socket == "Color" else float(params[key]))
+                  for socket, key in sockets.items()}
+        settings = ({"distribution": params["distribution"].upper()}
+                    if "distribution" in params else {})
+        return Mapping(node, EXACT, f"Cycles' own {node[len('ShaderNodeBsdf'):]} BSDF: "
+                       + ", ".join(f"{k} {v}" for k, v in sorted(params.items())), inputs, settings)
     if name == "specular_reflection":
         fresnel = _fresnel_colour(params)
         exact = params.get("fresnel", "none") == "none"

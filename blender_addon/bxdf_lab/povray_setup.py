@@ -86,17 +86,20 @@ def _finish_for(name, params, model):
     if name == "specular_reflection":
         return ((0, 0, 0), 0.0, None, params["reflectance"], APPROXIMATE,
                 "mirror → POV reflection with the reflectance colour (no Fresnel)")
+    if name == "cycles_glossy" and params["distribution"] == "sharp":
+        return ((0, 0, 0), 0.0, None, params["color"], APPROXIMATE,
+                "Cycles' sharp glossy → POV reflection with the colour")
     if name in ("microfacet", "cycles_glossy"):
         distribution = params["distribution"]
-        if distribution == "blinn":
+        if name == "cycles_glossy":  # every distribution: Cycles' α = roughness² (isotropic part)
+            alpha = float(params["roughness"]) ** 2
+            exponent = 2.0 / max(alpha * alpha, 1e-12) - 2.0
+        elif distribution == "blinn":
             exponent = float(params["exponent"])
         elif distribution == "ashikhmin_shirley":
             exponent = math.sqrt(float(params["exponent_x"]) * float(params["exponent_y"]))
         else:
-            if name == "cycles_glossy":  # Cycles: α = roughness² (isotropic part)
-                alpha = float(params["roughness"]) ** 2
-            else:
-                alpha = math.sqrt(float(params["alpha_x"]) * float(params["alpha_y"]))
+            alpha = math.sqrt(float(params["alpha_x"]) * float(params["alpha_y"]))
             exponent = 2.0 / max(alpha * alpha, 1e-12) - 2.0
         reflectance = np.asarray(params["color" if name == "cycles_glossy" else "reflectance"],
                                  dtype=float)

@@ -21,6 +21,11 @@ std::vector<ModelInfo> builtin_models() {
       cycles_oren_nayar_model(),
       cycles_glossy_model(),
       cycles_principled_model(),
+      cycles_glass_model(),
+      cycles_refraction_model(),
+      cycles_translucent_model(),
+      cycles_transparent_model(),
+      cycles_velvet_model(),
       measured_model(),
   };
 }

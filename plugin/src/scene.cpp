@@ -159,6 +159,11 @@ uint32_t Scene::add_material(Material material) {
     eta = 1.0f;
     if (p.has("eta_i") && p.has("eta_t") && p.number("eta_i") > 0.0)
       eta = static_cast<float>(p.number("eta_t") / p.number("eta_i"));
+    // Cycles' Glass and Refraction (parameter `ior`) refract without scaling radiance (their
+    // BTDF carries the light side's η², cycles_lobes.h), and the Transparent and Translucent
+    // closures do not refract: for all of them there is no scaling to undo, η stays 1. They are
+    // transmissive all the same, so their normal keeps its orientation and a ray leaving the
+    // glass sees the inverted index, as in Cycles.
     break;
   }
   material_eta_.push_back(eta);

@@ -81,6 +81,10 @@ def test_lambertian_becomes_an_exact_diffuse_bsdf(material):
                            "clearcoat": 0.7, "clearcoat_roughness": 0.3}),
     ("cycles_principled", {"base_color": (0.2, 0.6, 0.8), "roughness": 0.7, "transmission": 0.4,
                            "ior": 1.6, "specular": 0.3}),
+    ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.6,
+                       "distribution": "ashikhmin_shirley"}),
+    ("cycles_glossy", {"color": (0.7, 0.5, 0.3), "roughness": 0.9,
+                       "distribution": "ashikhmin_shirley"}),
     ("microfacet", {"reflectance": (0.7, 0.5, 0.3), "distribution": "ggx", "alpha_x": 0.4,
                     "alpha_y": 0.4, "shadowing": "smith", "fresnel": "none"}),
     ("microfacet", {"reflectance": (0.7, 0.5, 0.3), "distribution": "beckmann", "alpha_x": 0.2,
@@ -169,3 +173,32 @@ def test_principled_maps_every_parameter_to_its_socket(bxdf, material):
     _set_up(material)
     assert material.bxdf_lab.cycles_label == "approximate"
     assert "subsurface" in material.bxdf_lab.cycles_mapping
+
+
+@pytest.mark.parametrize("model_name, params, node_type, sockets", [
+    ("cycles_glass", {"color": (0.9, 0.8, 0.7), "distribution": "ggx", "roughness": 0.3,
+                      "ior": 1.5}, "BSDF_GLASS", {"Roughness": 0.3, "IOR": 1.5}),
+    ("cycles_glass", {"distribution": "multi_ggx", "roughness": 0.6, "ior": 1.33}, "BSDF_GLASS",
+     {"Roughness": 0.6, "IOR": 1.33}),
+    ("cycles_refraction", {"distribution": "sharp", "ior": 2.4}, "BSDF_REFRACTION",
+     {"IOR": 2.4}),
+    ("cycles_translucent", {"color": (0.9, 0.8, 0.7)}, "BSDF_TRANSLUCENT", {}),
+    ("cycles_transparent", {"color": (0.9, 0.8, 0.7)}, "BSDF_TRANSPARENT", {}),
+    ("cycles_velvet", {"color": (0.9, 0.8, 0.7), "sigma": 0.25}, "BSDF_VELVET", {"Sigma": 0.25}),
+    ("cycles_glossy", {"distribution": "sharp", "anisotropy": 0.5}, "BSDF_GLOSSY", {}),
+    ("cycles_glossy", {"distribution": "multi_ggx", "anisotropy": 0.5}, "BSDF_ANISOTROPIC",
+     {"Anisotropy": 0.5}),
+])
+def test_cycles_node_models_map_onto_their_node_exactly(model_name, params, node_type, sockets,
+                                                        material):
+    api.assign(material, model_name, **params)
+    _set_up(material)
+    assert material.bxdf_lab.cycles_label == "exact"
+    node = material.node_tree.nodes["Material Output"].inputs["Surface"].links[0].from_node
+    assert node.type == node_type
+    if "distribution" in params:
+        assert node.distribution == params["distribution"].upper()
+    for socket, value in sockets.items():
+        assert node.inputs[socket].default_value == pytest.approx(value)
+    if "color" in params:
+        assert tuple(node.inputs["Color"].default_value) == pytest.approx((*params["color"], 1.0))

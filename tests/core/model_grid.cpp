@@ -160,6 +160,61 @@ std::map<std::string, std::vector<GridEntry>> build_grid() {
                                                {"anisotropy", -0.6}, {"color", 1.0}})),
       entry("ggx_singular_mirror", params({{"distribution", "ggx"}, {"roughness", 0.0},
                                            {"color", 1.0}})),
+      entry("sharp", params({{"distribution", "sharp"}, {"roughness", 0.5},
+                             {"color", RGBValue{1.0, 0.7, 0.4}}})),
+      // n = 2/α² − 2: roughness 0.45 gives n ≈ 48, roughness 0.6 with anisotropy 0.5 gives
+      // nx ≈ 60, ny ≈ 1.9.
+      entry("ashikhmin_shirley_iso", params({{"distribution", "ashikhmin_shirley"},
+                                             {"roughness", 0.45}, {"color", 1.0}})),
+      entry("ashikhmin_shirley_aniso", params({{"distribution", "ashikhmin_shirley"},
+                                               {"roughness", 0.6}, {"anisotropy", 0.5},
+                                               {"color", RGBValue{0.9, 0.8, 1.0}}})),
+      entry("ashikhmin_shirley_rough1", params({{"distribution", "ashikhmin_shirley"},
+                                                {"roughness", 1.0}, {"color", 1.0}})),
+      entry("multi_ggx_aniso", params({{"distribution", "multi_ggx"}, {"roughness", 0.7},
+                                       {"anisotropy", 0.3}, {"color", RGBValue{0.9, 0.7, 0.5}}})),
+  };
+  // Glass and refraction: α = roughness², ior below over above (inverted seen from below).
+  // The rough ones gain energy through Cycles' refraction lobe (see cycles_refraction below)
+  // and its weight max(1e-4, 1 − F); measured maxima recorded.
+  g["cycles_glass"] = {
+      entry("ggx", params({{"distribution", "ggx"}, {"roughness", 0.5}, {"ior", 1.5}}), 1.0751),
+      entry("beckmann_tinted", params({{"distribution", "beckmann"}, {"roughness", 0.6},
+                                       {"ior", 1.33}, {"color", RGBValue{0.9, 0.7, 1.0}}}),
+            1.1405),
+      entry("ggx_ior_below_one", params({{"distribution", "ggx"}, {"roughness", 0.7},
+                                         {"ior", 0.7}}),
+            1.1082),
+      entry("multi_ggx", params({{"distribution", "multi_ggx"}, {"roughness", 0.7},
+                                 {"ior", 1.45}})),
+      entry("sharp", params({{"distribution", "sharp"}, {"ior", 1.5}})),
+      entry("ggx_singular", params({{"distribution", "ggx"}, {"roughness", 0.01}, {"ior", 2.4},
+                                    {"color", RGBValue{1.0, 0.9, 0.8}}})),
+  };
+  // Cycles' rough refraction (weight 1, no Fresnel) gains energy: without a facet side check
+  // its f is not zero for pairs no facet refracts into, which adds up to 0.7 at grazing wo
+  // (measured maxima at θo = 89°: 1.717 for GGX α 0.25, 1.843 for Beckmann α 0.36).
+  g["cycles_refraction"] = {
+      entry("ggx", params({{"distribution", "ggx"}, {"roughness", 0.5}, {"ior", 1.5}}), 1.7171),
+      entry("beckmann", params({{"distribution", "beckmann"}, {"roughness", 0.6},
+                                {"ior", 1.45}, {"color", RGBValue{0.8, 1.0, 0.6}}}),
+            1.8425),
+      entry("sharp", params({{"distribution", "sharp"}, {"ior", 1.33}})),
+      entry("index_one_passes_through", params({{"distribution", "ggx"}, {"roughness", 0.5},
+                                                {"ior", 1.0}})),
+  };
+  g["cycles_translucent"] = {
+      entry("default", ParamSet()),
+      entry("tinted", params({{"color", RGBValue{1.0, 0.5, 0.2}}})),
+  };
+  g["cycles_transparent"] = {
+      entry("white", params({{"color", 1.0}})),
+      entry("tinted", params({{"color", RGBValue{0.2, 0.6, 1.0}}})),
+  };
+  g["cycles_velvet"] = {
+      entry("sigma1", params({{"sigma", 1.0}})),
+      entry("sigma03_tinted", params({{"sigma", 0.3}, {"color", RGBValue{0.9, 0.3, 0.5}}})),
+      entry("sigma0_clamped", params({{"sigma", 0.0}, {"color", 1.0}})),
   };
   // Cycles' Principled BSDF: every closure, roughness ≥ 0.35 so that the grid resolves the
   // lobes; the singular (delta) cases are tested in test_cycles_principled.cpp, except the
@@ -289,6 +344,22 @@ bool refractive_indices(const BxDF& model, float* eta_outside, float* eta_inside
   *eta_outside = static_cast<float>(p.number("eta_i"));
   *eta_inside = static_cast<float>(p.number("eta_t"));
   return true;
+}
+
+bool cycles_refractive_indices(const BxDF& model, float* eta_outside, float* eta_inside) {
+  const ParamSet& p = model.params();
+  if (!p.has("ior") || !(model.flags() & kTransmission)) return false;
+  *eta_outside = 1.0f;
+  *eta_inside = std::max(static_cast<float>(p.number("ior")), 1e-5f);
+  return true;
+}
+
+const char* non_reciprocal_reason(const std::string& model) {
+  if (model == "cycles_glass")
+    return "Cycles weights the glass lobes by the Fresnel term at N.V alone (F(wo) for "
+           "reflection, max(1e-4, 1 - F(wo)) for refraction), and the multiscatter walk is "
+           "not reciprocal for transmission";
+  return nullptr;
 }
 
 std::string describe(const std::string& model, const GridEntry& entry) {

@@ -56,6 +56,15 @@ BxDFPtr make_entry(const std::string& model, const GridEntry& entry);
 // on the −z side): the two indices. False for models without them.
 bool refractive_indices(const BxDF& model, float* eta_outside, float* eta_inside);
 
+// For Cycles' refracting models (parameter ior: the index below over the index above):
+// outside 1, inside max(ior, 1e-5). Their transmission carries no radiance scaling:
+// f(wi, wo) = (η_wo/η_wi)² f(wo, wi), the inverse of the pbrt convention above.
+bool cycles_refractive_indices(const BxDF& model, float* eta_outside, float* eta_inside);
+
+// Why a model's f is not reciprocal, or nullptr when it is. The reciprocity test checks that
+// such a model is indeed non-reciprocal somewhere (the reason must stay true).
+const char* non_reciprocal_reason(const std::string& model);
+
 // "model[label]" for messages.
 std::string describe(const std::string& model, const GridEntry& entry);
 

@@ -178,6 +178,105 @@ TEST(CyclesGlossy, ParametersAreRefusedByName) {
     EXPECT_NE(std::string(e.what()).find("'roughness'"), std::string::npos) << e.what();
   }
   p = ParamSet();
-  p.set("distribution", "ashikhmin_shirley");
+  p.set("distribution", "phong");
   EXPECT_THROW(make("cycles_glossy", p), ParameterError);
+}
+
+namespace {
+
+// Cycles' bsdf_ashikhmin_shirley_eval written out in double: the node's α (roughness², the
+// anisotropy mapping of the GGX case, saturated) clamped to [1e-4, 1], n = 2/α² − 2, eval =
+// cos θi · norm · lobe · pump, divided here by cos θi. Also its pdf.
+struct CyclesAshikhminShirley {
+  double n_x, n_y;
+  CyclesAshikhminShirley(double roughness, double anisotropy) {
+    const CyclesReference alphas("ggx", roughness, anisotropy);
+    const double ax = std::min(1.0, std::max(1e-4, alphas.alpha_x));
+    const double ay = std::min(1.0, std::max(1e-4, alphas.alpha_y));
+    n_x = 2 / (ax * ax) - 2;
+    n_y = 2 / (ay * ay) - 2;
+  }
+  // {f, pdf}
+  std::pair<double, double> eval(const Vec3& I, const Vec3& O) const {
+    double n_dot_i = I.z, n_dot_o = O.z;
+    if (!(n_dot_i > 0 && n_dot_o > 0)) return {0, 0};
+    const double cos_ni = O.z;
+    n_dot_i = std::max(n_dot_i, 1e-6);
+    n_dot_o = std::max(n_dot_o, 1e-6);
+    double hx = double(I.x) + O.x, hy = double(I.y) + O.y, hz = double(I.z) + O.z;
+    const double len = std::sqrt(hx * hx + hy * hy + hz * hz);
+    hx /= len;
+    hy /= len;
+    hz /= len;
+    const double h_dot_i = std::max(std::fabs(hx * I.x + hy * I.y + hz * I.z), 1e-6);
+    const double h_dot_n = std::max(hz, 1e-6);
+    const double pump = 1 / std::max(1e-6, h_dot_i * std::max(n_dot_o, n_dot_i));
+    double lobe, norm;
+    if (n_x == n_y) {
+      lobe = std::pow(h_dot_n, n_x);
+      norm = (n_x + 1) / (8 * kPiD);
+    } else {
+      lobe = h_dot_n < 1 ? std::pow(h_dot_n, (n_x * hx * hx + n_y * hy * hy) /
+                                                 (1 - h_dot_n * h_dot_n))
+                         : 1.0;
+      norm = std::sqrt((n_x + 1) * (n_y + 1)) / (8 * kPiD);
+    }
+    const double out = n_dot_o * norm * lobe * pump;
+    return {out / cos_ni, norm * lobe / h_dot_i};
+  }
+};
+
+}  // namespace
+
+TEST(CyclesGlossy, AshikhminShirleyMatchesCyclesFormula) {
+  PCG32 rng(23);
+  for (const double roughness : {0.1, 0.3, 0.6, 1.0}) {
+    for (const double anisotropy : {0.0, 0.4, -0.8}) {
+      SCOPED_TRACE(testing::Message() << "r=" << roughness << " a=" << anisotropy);
+      const CyclesAshikhminShirley ref(roughness, anisotropy);
+      const BxDFPtr m = make_glossy("ashikhmin_shirley", roughness, anisotropy);
+      EXPECT_TRUE(m->flags() & kGlossy);
+      int nonzero = 0;
+      for (int i = 0; i < 400; ++i) {
+        const Vec3 wo = random_upper(rng);
+        Vec3 wi = random_upper(rng);
+        if (i % 2) {
+          const BxDFSample s = m->sample_f(wo, Point2(rng.uniform(), rng.uniform()));
+          if (!s.valid()) continue;
+          wi = s.wi;
+        }
+        const auto [f, pdf] = ref.eval(wo, wi);
+        // cos θh^n with n up to 2e4 (roughness 0.1) turns float's 1e-7 in cos θh into
+        // n·1e-7 relative.
+        const double rel_tol = 2e-5 + 2e-7 * std::max(ref.n_x, ref.n_y);
+        nonzero += f > 1e-3;
+        EXPECT_NEAR(m->f(wo, wi).g, 0.9 * f, rel_tol * 0.9 * f + 1e-7);
+        EXPECT_NEAR(m->pdf(wo, wi), pdf, rel_tol * pdf + 1e-7);
+      }
+      EXPECT_GT(nonzero, 50);
+    }
+  }
+}
+
+TEST(CyclesGlossy, AshikhminShirleyIsSingularAtTheAlphaFloor) {
+  // α = roughness² below 1e-4 is raised to 1e-4, which Cycles treats as a mirror.
+  for (const double roughness : {0.0, 0.005, 0.01}) {
+    const BxDFPtr m = make_glossy("ashikhmin_shirley", roughness, 0.0, 0.6);
+    EXPECT_TRUE(m->is_delta()) << roughness;
+    const BxDFSample s = m->sample_f(Vec3(0.6f, 0.0f, 0.8f), Point2(0.3f, 0.3f));
+    ASSERT_TRUE(s.valid());
+    EXPECT_NEAR(s.f.r * s.wi.z, 0.6f, 1e-6f);
+  }
+  EXPECT_FALSE(make_glossy("ashikhmin_shirley", 0.011, 0.0)->is_delta());
+}
+
+TEST(CyclesGlossy, SharpIsAMirrorWhateverTheRoughness) {
+  const BxDFPtr m = make_glossy("sharp", 0.8, 0.5, 0.7);
+  EXPECT_TRUE(m->is_delta());
+  const Vec3 wo = normalize(Vec3(0.2f, 0.5f, 0.6f));
+  const BxDFSample s = m->sample_f(wo, Point2(0.9f, 0.1f));
+  ASSERT_TRUE(s.valid());
+  EXPECT_NEAR(s.wi.x, -wo.x, 1e-6f);
+  EXPECT_NEAR(s.wi.y, -wo.y, 1e-6f);
+  EXPECT_NEAR(s.f.g * s.wi.z, 0.7f, 1e-6f);
 }

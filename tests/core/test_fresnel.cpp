@@ -188,3 +188,17 @@ TEST(FresnelFromF0, InversionsReproduceF0AtNormalIncidence) {
   EXPECT_TRUE(std::isfinite(eta_from_f0(1.0f)));
   EXPECT_TRUE(std::isfinite(k_from_f0(1.0f)));
 }
+
+TEST(Fresnel, DielectricTransmittanceIsOneMinusReflectance) {
+  for (float eta_t : {1.0f, 1.33f, 1.5f, 2.4f})
+    for (float c = -1.0f; c <= 1.0f; c += 0.01f) {
+      const float t = fresnel_dielectric_transmittance(c, 1.0f, eta_t);
+      EXPECT_NEAR(t, 1.0f - fresnel_dielectric(c, 1.0f, eta_t), 2e-6f) << c << " " << eta_t;
+      EXPECT_GE(t, 0.0f);
+      EXPECT_LE(t, 1.0f);
+    }
+  // Total internal reflection, grazing and non-finite input transmit nothing.
+  EXPECT_EQ(fresnel_dielectric_transmittance(-0.1f, 1.0f, 1.5f), 0.0f);
+  EXPECT_EQ(fresnel_dielectric_transmittance(0.0f, 1.0f, 1.5f), 0.0f);
+  EXPECT_EQ(fresnel_dielectric_transmittance(std::nanf(""), 1.0f, 1.5f), 0.0f);
+}

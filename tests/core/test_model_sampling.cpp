@@ -137,7 +137,8 @@ TEST_P(DeltaSampling, DeltaLobes) {
     const BxDFPtr m = make_entry(model, e);
     if (!m->is_delta()) continue;
     float eta_outside = 1.0f, eta_inside = 1.0f;
-    const bool refracts = refractive_indices(*m, &eta_outside, &eta_inside);
+    const bool refracts = refractive_indices(*m, &eta_outside, &eta_inside) ||
+                          cycles_refractive_indices(*m, &eta_outside, &eta_inside);
     PCG32 rng(run_seed(model, e.label, 0));
     for (const IncidentDirection& dir : incident_directions()) {
       const Vec3 wo = dir.wo;

@@ -26,6 +26,16 @@ inline float cos2_phi(const Vec3& w) { return cos_phi(w) * cos_phi(w); }
 inline float sin2_phi(const Vec3& w) { return sin_phi(w) * sin_phi(w); }
 inline bool same_hemisphere(const Vec3& a, const Vec3& b) { return a.z * b.z > 0.0f; }
 
+// Turns a pair over (z → −z on both) when wo is below the surface, as a two-sided reflection
+// model does; true when both are then strictly above.
+inline bool turn_pair_upward(Vec3* wo, Vec3* wi) {
+  if (wo->z < 0.0f) {
+    wo->z = -wo->z;
+    wi->z = -wi->z;
+  }
+  return wo->z > 0.0f && wi->z > 0.0f;
+}
+
 inline Vec3 reflect(const Vec3& wo, const Vec3& n) { return -wo + n * (2.0f * dot(wo, n)); }
 
 // Refracts wi about n (n on wi's side). eta = eta_i / eta_t. False on total internal reflection.

@@ -18,22 +18,51 @@ BXDF_KERNEL bool is_finite_number(float x) {
   return std::fabs(x) <= std::numeric_limits<float>::max();
 }
 
+// The two sides of a dielectric interface for light arriving at cos_i: the indices of the
+// incident (ei) and transmitted (et) sides, |cos θi|, cos θt, and total internal reflection.
+// cos_i < 0 means the light arrives from inside (the eta_t side): the indices swap.
+struct DielectricAngles {
+  float ei, et, c, cos_t;
+  bool total_internal_reflection;
+};
+BXDF_KERNEL DielectricAngles dielectric_angles(float cos_i, float eta_i, float eta_t) {
+  const float c_signed = clamp(cos_i, -1.0f, 1.0f);
+  const bool inside = c_signed < 0.0f;  // arriving from the eta_t side
+  DielectricAngles a;
+  a.ei = inside ? eta_t : eta_i;
+  a.et = inside ? eta_i : eta_t;
+  a.c = inside ? -c_signed : c_signed;
+  const float sin_i = safe_sqrt(1.0f - a.c * a.c);
+  const float sin_t = a.ei / a.et * sin_i;
+  a.total_internal_reflection = sin_t >= 1.0f;
+  a.cos_t = safe_sqrt(1.0f - sin_t * sin_t);
+  return a;
+}
+
 // Unpolarised dielectric reflectance. cos_i < 0 means the light arrives from inside
 // (the eta_t side): the indices swap. Returns 1 on total internal reflection.
 BXDF_KERNEL float fresnel_dielectric(float cos_i, float eta_i, float eta_t) {
-  const float c_signed = clamp(cos_i, -1.0f, 1.0f);
-  const bool inside = c_signed < 0.0f;  // arriving from the eta_t side
-  const float ei = inside ? eta_t : eta_i, et = inside ? eta_i : eta_t;
-  const float c = inside ? -c_signed : c_signed;
-  const float sin_i = safe_sqrt(1.0f - c * c);
-  const float sin_t = ei / et * sin_i;
-  const bool total_internal_reflection = sin_t >= 1.0f;
-  const float cos_t = safe_sqrt(1.0f - sin_t * sin_t);
+  const DielectricAngles a = dielectric_angles(cos_i, eta_i, eta_t);
+  const float ei = a.ei, et = a.et, c = a.c, cos_t = a.cos_t;
+  const bool total_internal_reflection = a.total_internal_reflection;
   const float r_par = (et * c - ei * cos_t) / (et * c + ei * cos_t);
   const float r_perp = (ei * c - et * cos_t) / (ei * c + et * cos_t);
   const float f = 0.5f * (r_par * r_par + r_perp * r_perp);
   const float f_clamped = is_finite_number(f) ? clamp(f, 0.0f, 1.0f) : 1.0f;  // 0/0: grazing
   return !is_finite_number(cos_i) ? 0.0f : (total_internal_reflection ? 1.0f : f_clamped);
+}
+
+// 1 − fresnel_dielectric(cos_i, eta_i, eta_t), computed without the cancellation of 1 − F
+// where F is close to 1 (grazing incidence): 1 − r² = 4ab/(a + b)² for r = (a − b)/(a + b).
+// 0 on total internal reflection.
+BXDF_KERNEL float fresnel_dielectric_transmittance(float cos_i, float eta_i, float eta_t) {
+  const DielectricAngles a = dielectric_angles(cos_i, eta_i, eta_t);
+  const float ei = a.ei, et = a.et, c = a.c, cos_t = a.cos_t;
+  const bool total_internal_reflection = a.total_internal_reflection;
+  const float par = et * c + ei * cos_t, perp = ei * c + et * cos_t;
+  const float t = 2.0f * ei * et * c * cos_t * (1.0f / (par * par) + 1.0f / (perp * perp));
+  const float t_clamped = is_finite_number(t) ? clamp(t, 0.0f, 1.0f) : 0.0f;  // 0/0: grazing
+  return !is_finite_number(cos_i) || total_internal_reflection ? 0.0f : t_clamped;
 }
 
 // The seed's conductor formula (r∥², r⊥² in terms of η, k), evaluated at |cos_i|.

@@ -67,6 +67,11 @@ ModelInfo lafortune_model();
 ModelInfo cycles_oren_nayar_model();
 ModelInfo cycles_glossy_model();
 ModelInfo cycles_principled_model();
+ModelInfo cycles_glass_model();
+ModelInfo cycles_refraction_model();
+ModelInfo cycles_translucent_model();
+ModelInfo cycles_transparent_model();
+ModelInfo cycles_velvet_model();
 ModelInfo measured_model();
 
 }  // namespace bxdf

@@ -9,12 +9,12 @@
 #pragma once
 
 #include "bxdf/bxdf.h"
-#include "bxdf/microfacet/common.h"
+#include "bxdf/microfacet/cycles_lobes.h"
 
 namespace bxdf {
 
 // Cycles' singular threshold on αx·αy (bsdf_microfacet.h).
-constexpr float kCyclesSingularAlpha2 = 1e-7f;
+constexpr float kCyclesSingularAlpha2 = cycles::kSingularAlpha2;
 
 template <class Distribution>
 class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
@@ -22,7 +22,7 @@ class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
   CyclesGlossy(const RGB& color, const Distribution& distribution, bool mirror)
       : BxDFImpl<CyclesGlossy<Distribution>>(kReflection | (mirror ? kSpecular : kGlossy)),
         color_(color),
-        distribution_(distribution),
+        lobe_{distribution},
         mirror_(mirror) {}
 
   RGB eval(Vec3 wo, Vec3 wi) const {
@@ -31,9 +31,7 @@ class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
       wo.z = -wo.z;
       wi.z = -wi.z;
     }
-    Vec3 wh = wo + wi;
-    if (!normalize_direction(wh)) return RGB(0.0f);
-    return f_upper(wo, wi, wh);
+    return color_ * lobe_.f(wo, wi);
   }
 
   BxDFSample sample(Vec3 wo, Point2 u) const {
@@ -48,11 +46,7 @@ class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
       s.f = color_ / wi.z;
       s.flags = kReflection | kSpecular;
     } else {
-      const Vec3 wh = distribution_.sample_wh(wo, u);
-      const float wo_h = dot(wo, wh);
-      if (!(wo_h > 0.0f)) return s;
-      wi = reflect(wo, wh);
-      if (!(wi.z > 0.0f)) return s;
+      if (!lobe_.sample(wo, u, &wi)) return s;
       // f and pdf from (wo, wi) exactly as eval() and density() compute them (see microfacet.h).
       s.pdf = density(wo, wi);
       s.f = eval(wo, wi);
@@ -69,28 +63,15 @@ class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
       wo.z = -wo.z;
       wi.z = -wi.z;
     }
-    Vec3 wh = wo + wi;
-    if (!normalize_direction(wh)) return 0.0f;
-    const float wo_h = dot(wo, wh);
-    if (!(wo_h > 0.0f)) return 0.0f;
-    return distribution_.pdf_wh(wo, wh) / (4.0f * wo_h);
+    return lobe_.pdf(wo, wi);
   }
 
-  const Distribution& distribution() const { return distribution_; }
+  const Distribution& distribution() const { return lobe_.distribution; }
   bool is_mirror() const { return mirror_; }
 
  private:
-  RGB f_upper(const Vec3& wo, const Vec3& wi, const Vec3& wh) const {
-    const float cos_o = wo.z, cos_i = wi.z;
-    if (!(cos_o > 0.0f) || !(cos_i > 0.0f)) return RGB(0.0f);
-    const float d = distribution_.D(wh);
-    if (d == 0.0f) return RGB(0.0f);
-    const float g = distribution_.G1(wo) * distribution_.G1(wi);  // separable, as Cycles 3.4
-    return color_ * (d * g / (4.0f * cos_o * cos_i));
-  }
-
   RGB color_;
-  Distribution distribution_;
+  cycles::ReflectionLobe<Distribution> lobe_;
   bool mirror_;
 };
 

@@ -23,10 +23,17 @@ class SpecularTransmission final : public BxDFImpl<SpecularTransmission> {
     BxDFSample s;
     float radiance_scale = 1.0f;
     if (!specular_refract(wo, eta_i_, eta_t_, &s.wi, &radiance_scale)) return s;
-    // F is the same seen from either end of the refracted pair; pbrt evaluates it at cos θi.
-    const float fresnel = fresnel_dielectric(cos_theta(s.wi), eta_i_, eta_t_);
+    // F is the same seen from either end of the refracted pair (Stokes). It is evaluated from
+    // the side of lower index, whose cosine is exact; the other side's cosine comes from
+    // sqrt(1 − sin²θ), which near the critical angle has lost digits (pbrt-v3 evaluates at
+    // cos θi and is off by 3.5e-4 relative for a grazing wo entering glass from air).
+    const bool wo_side_lower = (cos_theta(wo) > 0.0f ? eta_i_ : eta_t_) <=
+                               (cos_theta(wo) > 0.0f ? eta_t_ : eta_i_);
+    // 1 − F directly: near grazing F is close to 1 and 1 − F would cancel.
+    const float transmitted = fresnel_dielectric_transmittance(
+        wo_side_lower ? cos_theta(wo) : cos_theta(s.wi), eta_i_, eta_t_);
     s.pdf = 1.0f;
-    s.f = t_ * ((1.0f - fresnel) * radiance_scale / abs_cos_theta(s.wi));
+    s.f = t_ * (transmitted * radiance_scale / abs_cos_theta(s.wi));
     s.flags = kTransmission | kSpecular;
     return s;
   }

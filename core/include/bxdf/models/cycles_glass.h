@@ -1,0 +1,173 @@
+// Cycles 3.4's Glass and Refraction BSDFs (svm/closure.h, closure/bsdf_microfacet.h,
+// bsdf_reflection.h, bsdf_refraction.h), exactly as the nodes build them:
+// - Glass: a reflection lobe weighted by the dielectric Fresnel F at N·V (Cycles'
+//   fresnel_dielectric_cos) and a refraction lobe weighted by max(1e-4, 1 − F), a weight that
+//   stays non-zero under total internal reflection; neither lobe has a Fresnel term inside.
+// - Refraction: the refraction lobe alone, weight 1.
+// Both times the node's colour, α = roughness² (isotropic). The lobes are those of
+// microfacet/cycles_lobes.h (no facet side check in the rough refraction; a refraction that
+// carries no radiance scaling). One sample picks a lobe in proportion to its weight, as Cycles
+// picks a closure, so f = Σ wₖ fₖ and pdf = Σ (wₖ/Σw) pdfₖ.
+// `ior` is the index below the surface (z < 0) over the index above; seen from below (wo.z <
+// 0) the pair is turned over and the index inverted, as Cycles does on back faces.
+// Cycles' f is not zero for transmitted pairs that no facet facing wo refracts into (it does
+// not check sides), which visible-normal sampling never draws. So that sample_f covers all of
+// f, a share kCosineCover (1/4) of the refraction samples is cosine-distributed on the transmitted
+// side and the pdf is that mixture (Cycles reports its eval's pdf, which its sampler does not
+// realise: its images lose the light that only light sampling finds there, a finding of the
+// comparison harness).
+// Cycles' singular cases become the delta form (CyclesSharpDielectric): the Sharp distribution,
+// αx·αy <= 1e-7, and a refraction index within 1e-4 of 1 (Cycles then samples a delta
+// pass-through; its eval stays a glossy lobe that its sampler never realises). A delta sample
+// reports pdf 1 and folds the lobe choice into f, as every delta lobe here: the weight of
+// either lobe is colour·(w_R + w_T).
+#pragma once
+
+#include "bxdf/bxdf.h"
+#include "bxdf/microfacet/cycles_lobes.h"
+#include "bxdf/microfacet/multiscatter_ggx.h"  // cycles_fresnel_dielectric_cos
+#include "bxdf/sampling.h"
+#include "bxdf/specular.h"
+
+namespace bxdf {
+
+// The Glass node's two closures, or the Refraction node's one.
+enum class CyclesDielectricNode { kGlass, kRefraction };
+
+// The closure weights (without the colour) for a wo above the surface with relative index eta.
+struct CyclesDielectricWeights {
+  float reflection, refraction;
+  float reflection_probability() const { return reflection / (reflection + refraction); }
+};
+inline CyclesDielectricWeights cycles_dielectric_weights(CyclesDielectricNode node, float cos_o,
+                                                         float eta) {
+  if (node == CyclesDielectricNode::kRefraction) return {0.0f, 1.0f};
+  const float fresnel = microfacet::cycles_fresnel_dielectric_cos(cos_o, eta);
+  return {fresnel, std::max(1e-4f, 1.0f - fresnel)};
+}
+
+template <class Distribution>
+class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distribution>> {
+ public:
+  CyclesRoughDielectric(CyclesDielectricNode node, const RGB& color,
+                        const Distribution& distribution, float ior)
+      : BxDFImpl<CyclesRoughDielectric<Distribution>>(
+            kTransmission | kGlossy | (node == CyclesDielectricNode::kGlass ? kReflection : 0u)),
+        node_(node),
+        color_(color),
+        reflection_{distribution},
+        refraction_{distribution},
+        ior_(ior) {}
+
+  RGB eval(const Vec3& wo, const Vec3& wi) const {
+    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
+    const CyclesDielectricWeights w = cycles_dielectric_weights(node_, c.wo.z, c.eta);
+    const float f = c.wi.z > 0.0f ? w.reflection * reflection_.f(c.wo, c.wi)
+                                  : w.refraction * refraction_.f(c.wo, c.wi, c.eta);
+    return color_ * f;
+  }
+
+  DirectionSample sample_direction(const Vec3& wo, Point2 u) const {
+    DirectionSample d;
+    if (wo.z == 0.0f) return d;
+    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wo, ior_);
+    const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
+    Vec3 wi;
+    if (u.x < p_reflect) {
+      d.ok = reflection_.sample(c.wo, Point2(u.x / p_reflect, u.y), &wi);
+      d.flags = kReflection | kGlossy;
+    } else {
+      const float v = std::min((u.x - p_reflect) / (1.0f - p_reflect), 0x1.fffffep-1f);
+      if (v < kCosineCover) {
+        wi = sample_cosine_hemisphere(Point2(v / kCosineCover, u.y));
+        wi.z = -wi.z;
+        d.ok = wi.z < 0.0f;
+      } else {
+        const float v_facet = std::min((v - kCosineCover) / (1.0f - kCosineCover), 0x1.fffffep-1f);
+        d.ok = refraction_.sample(c.wo, Point2(v_facet, u.y), c.eta, &wi);
+      }
+      d.flags = kTransmission | kGlossy;
+    }
+    d.wi = c.mirrored ? Vec3(wi.x, wi.y, -wi.z) : wi;
+    return d;
+  }
+
+  float density(const Vec3& wo, const Vec3& wi) const {
+    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
+    const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
+    if (c.wi.z > 0.0f) return p_reflect * reflection_.pdf(c.wo, c.wi);
+    const float cover = c.wi.z < 0.0f ? cosine_hemisphere_pdf(-c.wi.z) : 0.0f;
+    return (1.0f - p_reflect) * (kCosineCover * cover + (1.0f - kCosineCover) *
+                                                            refraction_.pdf(c.wo, c.wi, c.eta));
+  }
+
+  // The share of refraction samples drawn cosine-weighted (see the file comment).
+  static constexpr float kCosineCover = 0.25f;
+
+ private:
+  CyclesDielectricNode node_;
+  RGB color_;
+  cycles::ReflectionLobe<Distribution> reflection_;
+  cycles::RefractionLobe<Distribution> refraction_;
+  float ior_;
+};
+
+class CyclesSharpDielectric final : public BxDFImpl<CyclesSharpDielectric> {
+ public:
+  CyclesSharpDielectric(CyclesDielectricNode node, const RGB& color, float ior)
+      : BxDFImpl(kTransmission | kSpecular |
+                 (node == CyclesDielectricNode::kGlass ? kReflection : 0u)),
+        node_(node),
+        color_(color),
+        ior_(ior) {}
+
+  RGB eval(const Vec3&, const Vec3&) const { return RGB(0.0f); }
+  BxDFSample sample(const Vec3& wo, Point2 u) const {
+    BxDFSample s;
+    if (std::fabs(wo.z) < kMinSpecularCos) return s;
+    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wo, ior_);
+    const CyclesDielectricWeights w = cycles_dielectric_weights(node_, c.wo.z, c.eta);
+    Vec3 wi;
+    if (u.x < w.reflection_probability()) {
+      wi = specular_reflect(c.wo);
+      s.flags = kReflection | kSpecular;
+    } else {
+      // Cycles' refraction closure samples nothing under total internal reflection.
+      if (!refract(c.wo, Vec3(0.0f, 0.0f, 1.0f), 1.0f / c.eta, &wi) ||
+          !(wi.z < -kMinSpecularCos))
+        return s;
+      s.flags = kTransmission | kSpecular;
+    }
+    s.wi = c.mirrored ? Vec3(wi.x, wi.y, -wi.z) : wi;
+    s.pdf = 1.0f;
+    s.f = color_ * ((w.reflection + w.refraction) / std::fabs(wi.z));
+    return s;
+  }
+  float density(const Vec3&, const Vec3&) const { return 0.0f; }
+
+ private:
+  CyclesDielectricNode node_;
+  RGB color_;
+  float ior_;
+};
+
+}  // namespace bxdf
+
+namespace bxdf {
+
+// The node's inputs as the closures see them (svm/closure.h and the node's compile step):
+// α = roughness², η = max(ior, 1e-5), and whether the closures are the delta form (the Sharp
+// distribution, roughness <= 1e-4, αx·αy <= 1e-7, or |η − 1| < 1e-4).
+struct CyclesDielectricInputs {
+  float alpha;
+  float ior;
+  bool sharp;
+};
+CyclesDielectricInputs cycles_dielectric_inputs(const std::string& distribution, float roughness,
+                                                float ior);
+
+// Builds the Glass or Refraction node's model from validated registry parameters (`color`,
+// `distribution`, `roughness`, `ior`).
+std::unique_ptr<BxDF> make_cycles_dielectric(CyclesDielectricNode node, const ParamSet& validated);
+
+}  // namespace bxdf

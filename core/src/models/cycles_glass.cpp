@@ -1,0 +1,67 @@
+#include "bxdf/models/cycles_glass.h"
+
+#include "bxdf/microfacet/beckmann.h"
+#include "bxdf/microfacet/ggx.h"
+#include "bxdf/model_support.h"
+#include "bxdf/models/cycles_multiscatter.h"
+#include "bxdf/registry.h"
+
+namespace bxdf {
+
+CyclesDielectricInputs cycles_dielectric_inputs(const std::string& distribution, float roughness,
+                                                float ior) {
+  CyclesDielectricInputs in;
+  in.alpha = roughness * roughness;
+  in.ior = std::max(ior, 1e-5f);
+  // Blender compiles roughness <= 1e-4 as the Sharp closures; the microfacet closures are
+  // singular at αx·αy <= 1e-7 and (refraction) when the index is within 1e-4 of 1, on either
+  // face (the back face sees 1/ior).
+  const bool index_one = std::fabs(in.ior - 1.0f) < 1e-4f || std::fabs(1.0f / in.ior - 1.0f) < 1e-4f;
+  const bool single_scatter_singular =
+      in.alpha * in.alpha <= cycles::kSingularAlpha2 || index_one;
+  in.sharp = distribution == "sharp" || roughness <= 1e-4f ||
+             (distribution != "multi_ggx" && single_scatter_singular);
+  return in;
+}
+
+std::unique_ptr<BxDF> make_cycles_dielectric(CyclesDielectricNode node, const ParamSet& p) {
+  const RGB color = to_rgb(p.rgb("color"));
+  const std::string& distribution = p.string("distribution");
+  const CyclesDielectricInputs in =
+      cycles_dielectric_inputs(distribution, static_cast<float>(p.number("roughness")),
+                               static_cast<float>(p.number("ior")));
+  if (in.sharp) return std::make_unique<CyclesSharpDielectric>(node, color, in.ior);
+  if (distribution == "multi_ggx") {
+    microfacet::MultiscatterSetup setup;
+    setup.alpha_x = setup.alpha_y = in.alpha;
+    setup.eta = in.ior;
+    return std::make_unique<CyclesMultiscatterGlass>(kReflection | kTransmission | kGlossy, color,
+                                                     setup);
+  }
+  if (distribution == "beckmann")
+    return std::make_unique<CyclesRoughDielectric<microfacet::Beckmann>>(
+        node, color, microfacet::Beckmann(in.alpha, in.alpha), in.ior);
+  return std::make_unique<CyclesRoughDielectric<microfacet::GGX>>(
+      node, color, microfacet::GGX(in.alpha, in.alpha), in.ior);
+}
+
+ModelInfo cycles_glass_model() {
+  ModelInfo m;
+  m.name = "cycles_glass";
+  m.doc = "Cycles 3.4 Glass BSDF: reflection weighted by F(N.V), refraction by max(1e-4, 1 - F)";
+  m.params = {
+      rgb_param("color", {1.0, 1.0, 1.0}, 0.0, 1.0, "Colour: a factor on both lobes"),
+      enum_param("distribution", "beckmann", {"sharp", "beckmann", "ggx", "multi_ggx"},
+                 "Cycles' distribution: sharp (delta), Beckmann, GGX or multiscatter GGX"),
+      float_param("roughness", 0.0, 0.0, 1.0, "",
+                  "Cycles roughness; alpha = roughness^2 (sharp at roughness <= 1e-4)"),
+      float_param("ior", 1.45, 0.0, 1000.0, "",
+                  "Index of refraction below the surface over above (Cycles uses max(ior, 1e-5))"),
+  };
+  m.create = [](const ParamSet& p) {
+    return make_cycles_dielectric(CyclesDielectricNode::kGlass, p);
+  };
+  return m;
+}
+
+}  // namespace bxdf
