@@ -3,9 +3,11 @@
 // Cycles does (in proportion to the average of the RGB weight).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "bxdf/bsdf.h"
+#include "bxdf/models/cycles_principled.h"
 #include "bxdf/registry.h"
 #include "bxdf/rng.h"
 #include "bxdf/sampling.h"
@@ -58,6 +60,57 @@ TEST(ClosurePlace, PlacedModelsEqualRegistryModels) {
           g.set("anisotropy", an);
           c.emplace_back("cycles_glossy", g);
         }
+    // Every distribution of the dielectric nodes, rough and sharp, an index near 1 and below 1.
+    for (const char* model : {"cycles_glass", "cycles_refraction"})
+      for (const char* dist : {"sharp", "beckmann", "ggx", "multi_ggx"}) {
+        if (std::string(model) == "cycles_refraction" && std::string(dist) == "multi_ggx") continue;
+        for (double r : {0.0, 0.35, 0.8})
+          for (double ior : {1.5, 0.7, 1.00005}) {
+            ParamSet d;
+            d.set("color", RGBValue{0.9, 0.7, 0.4});
+            d.set("distribution", dist);
+            d.set("roughness", r);
+            d.set("ior", ior);
+            c.emplace_back(model, d);
+          }
+      }
+    ParamSet tl;
+    tl.set("color", RGBValue{0.3, 0.6, 0.2});
+    c.emplace_back("cycles_translucent", tl);
+    ParamSet tp;
+    tp.set("color", RGBValue{0.5, 0.8, 0.1});
+    c.emplace_back("cycles_transparent", tp);
+    for (double sigma : {0.0, 0.3, 1.0}) {
+      ParamSet v;
+      v.set("color", RGBValue{0.4, 0.2, 0.7});
+      v.set("sigma", sigma);
+      c.emplace_back("cycles_velvet", v);
+    }
+    // Principled: every parameter off its default, both distributions, rough and smooth
+    // (multiscatter only above roughness 0.075), opaque and transmissive.
+    for (const char* dist : {"ggx", "multi_ggx"})
+      for (double r : {0.02, 0.4})
+        for (double transmission : {0.0, 0.7}) {
+          ParamSet p;
+          p.set("base_color", RGBValue{0.7, 0.4, 0.2});
+          p.set("subsurface", 0.2);
+          p.set("subsurface_color", RGBValue{0.9, 0.1, 0.3});
+          p.set("metallic", 0.3);
+          p.set("specular", 0.6);
+          p.set("specular_tint", 0.4);
+          p.set("roughness", r);
+          p.set("anisotropic", 0.5);
+          p.set("anisotropic_rotation", 0.15);
+          p.set("sheen", 0.6);
+          p.set("sheen_tint", 0.2);
+          p.set("clearcoat", 0.5);
+          p.set("clearcoat_roughness", 0.2);
+          p.set("ior", 1.6);
+          p.set("transmission", transmission);
+          p.set("transmission_roughness", 0.3);
+          p.set("distribution", dist);
+          c.emplace_back("cycles_principled", p);
+        }
     return c;
   }();
   uint64_t seed = 1;
@@ -73,6 +126,39 @@ TEST(ClosurePlace, PlacedModelsEqualRegistryModels) {
     EXPECT_LE(arena.used(), info->place_size);
     expect_same_model(*made, *placed, seed++);
   }
+}
+
+TEST(ClosurePlace, PlainPrincipledInputsEqualTheParamSetMapping) {
+  ParamSet p;
+  p.set("base_color", RGBValue{0.1, 0.2, 0.3});
+  p.set("anisotropic_rotation", 0.4);
+  p.set("transmission_roughness", 0.6);
+  p.set("distribution", "multi_ggx");
+  const ModelInfo* info = find_model("cycles_principled");
+  const BxDFPtr made = make("cycles_principled", p);
+  const std::vector<PlainValue> plain = plain_values(*info, made->params());
+  const CyclesPrincipledInputs a = cycles_principled_inputs(made->params());
+  const CyclesPrincipledInputs b = cycles_principled_inputs(info->params, plain.data());
+  EXPECT_EQ(a.base_color.b, b.base_color.b);
+  EXPECT_EQ(a.anisotropic_rotation, b.anisotropic_rotation);
+  EXPECT_EQ(a.transmission_roughness, b.transmission_roughness);
+  EXPECT_EQ(a.ior, b.ior);
+  EXPECT_TRUE(b.multiscatter);
+}
+
+TEST(ClosurePlace, ArenaHoldsAFullMaterialOfTheLargestModel) {
+  // The material graph reader refuses a material whose closures need more than kCapacity
+  // (place_size + 64 alignment slack each); a material of BSDF::kMaxComponents closures of the
+  // largest placeable model must pass.
+  size_t largest = 0;
+  for (const ModelInfo& m : models())
+    if (m.place) largest = std::max(largest, m.place_size);
+  EXPECT_LE(BSDF::kMaxComponents * (largest + 64), ClosureArena::kCapacity);
+  EXPECT_GE(ClosureArena::kMaxObjects, BSDF::kMaxComponents);
+  const ModelInfo* info = find_model("cycles_principled");
+  const std::vector<PlainValue> plain = plain_values(*info, make("cycles_principled")->params());
+  ClosureArena arena;
+  for (int i = 0; i < BSDF::kMaxComponents; ++i) EXPECT_NE(info->place(plain.data(), arena), nullptr);
 }
 
 TEST(ClosurePlace, ArenaRefusesWhenFullAndResets) {

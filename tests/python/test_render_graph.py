@@ -77,3 +77,30 @@ def test_per_corner_uv_maps_drive_the_lookup():
     mesh["uv_maps"] = [left[:-1], right]
     with pytest.raises(ValueError, match=r"\['uv_maps'\]\[0\]: expected shape"):
         bxdf.render(scene_dict(graph, mesh), DIRECT)
+
+
+@pytest.mark.parametrize("model,param,extra", [
+    ("cycles_principled", "base_color", {"roughness": 0.3, "sheen": 0.5, "clearcoat": 0.4}),
+    ("cycles_principled", "base_color", {"transmission": 0.6, "distribution": "multi_ggx"}),
+    ("cycles_glass", "color", {"roughness": 0.3, "distribution": "ggx"}),
+    ("cycles_refraction", "color", {"roughness": 0.2}),
+    ("cycles_translucent", "color", {}),
+    ("cycles_transparent", "color", {}),
+    ("cycles_velvet", "color", {"sigma": 0.4}),
+])
+def test_per_hit_models_render_like_their_constant_material(model, param, extra):
+    # A missing image is magenta: the per-hit (placed) model equals the prebuilt constant one.
+    # A grey world and bounces, so that the transmissive and delta models show something.
+    settings = dict(DIRECT, samples=2, max_bounces=4)
+
+    def render(material):
+        scene = scene_dict(material)
+        scene["world"] = {"color": [0.5, 0.5, 0.5]}
+        return bxdf.render(scene, settings)
+
+    graph = image_graph({"missing": True}, param, model)
+    graph["graph"]["closures"][0]["params"].update(extra)
+    textured = render(graph)
+    plain = render({"model": model, "params": {param: [1.0, 0.0, 1.0], **extra}})
+    assert plain[..., 0].max() > 0.05
+    np.testing.assert_allclose(textured, plain, rtol=1e-6, atol=1e-7)

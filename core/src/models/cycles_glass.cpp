@@ -1,5 +1,7 @@
 #include "bxdf/models/cycles_glass.h"
 
+#include <algorithm>
+
 #include "bxdf/microfacet/beckmann.h"
 #include "bxdf/microfacet/ggx.h"
 #include "bxdf/model_support.h"
@@ -24,25 +26,58 @@ CyclesDielectricInputs cycles_dielectric_inputs(const std::string& distribution,
   return in;
 }
 
-std::unique_ptr<BxDF> make_cycles_dielectric(CyclesDielectricNode node, const ParamSet& p) {
-  const RGB color = to_rgb(p.rgb("color"));
-  const std::string& distribution = p.string("distribution");
-  const CyclesDielectricInputs in =
-      cycles_dielectric_inputs(distribution, static_cast<float>(p.number("roughness")),
-                               static_cast<float>(p.number("ior")));
-  if (in.sharp) return std::make_unique<CyclesSharpDielectric>(node, color, in.ior);
+namespace {
+
+// create and place share this builder: `emit` makes the model in the caller's storage.
+template <class Emit>
+auto build_cycles_dielectric(CyclesDielectricNode node, const RGB& color,
+                             const std::string& distribution, float roughness, float ior,
+                             Emit&& emit) {
+  const CyclesDielectricInputs in = cycles_dielectric_inputs(distribution, roughness, ior);
+  if (in.sharp) return emit(Type<CyclesSharpDielectric>{}, node, color, in.ior);
   if (distribution == "multi_ggx") {
     microfacet::MultiscatterSetup setup;
     setup.alpha_x = setup.alpha_y = in.alpha;
     setup.eta = in.ior;
-    return std::make_unique<CyclesMultiscatterGlass>(kReflection | kTransmission | kGlossy, color,
-                                                     setup);
+    return emit(Type<CyclesMultiscatterGlass>{}, uint32_t(kReflection | kTransmission | kGlossy),
+                color, setup);
   }
   if (distribution == "beckmann")
-    return std::make_unique<CyclesRoughDielectric<microfacet::Beckmann>>(
-        node, color, microfacet::Beckmann(in.alpha, in.alpha), in.ior);
-  return std::make_unique<CyclesRoughDielectric<microfacet::GGX>>(
-      node, color, microfacet::GGX(in.alpha, in.alpha), in.ior);
+    return emit(Type<CyclesRoughDielectric<microfacet::Beckmann>>{}, node, color,
+                microfacet::Beckmann(in.alpha, in.alpha), in.ior);
+  return emit(Type<CyclesRoughDielectric<microfacet::GGX>>{}, node, color,
+              microfacet::GGX(in.alpha, in.alpha), in.ior);
+}
+
+}  // namespace
+
+std::unique_ptr<BxDF> make_cycles_dielectric(CyclesDielectricNode node, const ParamSet& p) {
+  return build_cycles_dielectric(node, to_rgb(p.rgb("color")), p.string("distribution"),
+                                 static_cast<float>(p.number("roughness")),
+                                 static_cast<float>(p.number("ior")),
+                                 [](auto type, const auto&... args) -> std::unique_ptr<BxDF> {
+                                   return make_from(type, args...);
+                                 });
+}
+
+void set_cycles_dielectric_place(ModelInfo& m, CyclesDielectricNode node) {
+  const size_t color = param_index(m.params, "color"),
+               distribution = param_index(m.params, "distribution"),
+               roughness = param_index(m.params, "roughness"), ior = param_index(m.params, "ior");
+  const auto& choices = m.params[distribution].choices;
+  m.place = [=](const PlainValue* v, ClosureArena& arena) -> const BxDF* {
+    // An enum's plain value is the index of its choice in the declaration.
+    const std::string& choice = choices[static_cast<size_t>(v[distribution].x)];
+    return build_cycles_dielectric(node, plain_rgb(v[color]), choice, v[roughness].x, v[ior].x,
+                                   [&](auto type, const auto&... args) -> const BxDF* {
+                                     return place_from(arena, type, args...);
+                                   });
+  };
+  // Every class the builder can emit (the Refraction node never picks multi_ggx; the bound
+  // stays an upper bound).
+  m.place_size = std::max({sizeof(CyclesSharpDielectric), sizeof(CyclesMultiscatterGlass),
+                           sizeof(CyclesRoughDielectric<microfacet::Beckmann>),
+                           sizeof(CyclesRoughDielectric<microfacet::GGX>)});
 }
 
 ModelInfo cycles_glass_model() {
@@ -61,6 +96,7 @@ ModelInfo cycles_glass_model() {
   m.create = [](const ParamSet& p) {
     return make_cycles_dielectric(CyclesDielectricNode::kGlass, p);
   };
+  set_cycles_dielectric_place(m, CyclesDielectricNode::kGlass);
   return m;
 }
 

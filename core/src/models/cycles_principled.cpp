@@ -406,12 +406,16 @@ BxDFSample CyclesPrincipled::sample(Vec3 wo, Point2 u) const {
   return s;
 }
 
-CyclesPrincipledInputs cycles_principled_inputs(const ParamSet& p) {
-  const auto num = [&](const char* name) { return static_cast<float>(p.number(name)); };
+namespace {
+
+// The one mapping from the registry's parameters to the inputs, for a ParamSet (create) and
+// for plain values (place): `num`, `rgb` and `choice` read a parameter by its name.
+template <class Num, class Color, class Choice>
+CyclesPrincipledInputs principled_inputs(Num&& num, Color&& rgb, Choice&& choice) {
   CyclesPrincipledInputs in;
-  in.base_color = to_rgb(p.rgb("base_color"));
+  in.base_color = rgb("base_color");
   in.subsurface = num("subsurface");
-  in.subsurface_color = to_rgb(p.rgb("subsurface_color"));
+  in.subsurface_color = rgb("subsurface_color");
   in.metallic = num("metallic");
   in.specular = num("specular");
   in.specular_tint = num("specular_tint");
@@ -425,8 +429,54 @@ CyclesPrincipledInputs cycles_principled_inputs(const ParamSet& p) {
   in.ior = num("ior");
   in.transmission = num("transmission");
   in.transmission_roughness = num("transmission_roughness");
-  in.multiscatter = p.string("distribution") == "multi_ggx";
+  in.multiscatter = choice("distribution") == "multi_ggx";
   return in;
+}
+
+// Plain values read by name without allocating: the mapping asks in declaration order, so
+// the search starts after the previous hit and nearly always succeeds at once.
+class PlainReader {
+ public:
+  PlainReader(const std::vector<ParamSpec>& params, const PlainValue* values)
+      : params_(params), values_(values) {}
+  size_t index(const char* name) {
+    for (size_t k = 0; k < params_.size(); ++k) {
+      const size_t i = (next_ + k) % params_.size();
+      if (params_[i].name == name) {
+        next_ = i + 1;
+        return i;
+      }
+    }
+    return 0;  // unreachable: the mapping only asks for declared names
+  }
+  const PlainValue& operator()(const char* name) { return values_[index(name)]; }
+
+ private:
+  const std::vector<ParamSpec>& params_;
+  const PlainValue* values_;
+  size_t next_ = 0;
+};
+
+}  // namespace
+
+CyclesPrincipledInputs cycles_principled_inputs(const ParamSet& p) {
+  return principled_inputs(
+      [&](const char* name) { return static_cast<float>(p.number(name)); },
+      [&](const char* name) { return to_rgb(p.rgb(name)); },
+      [&](const char* name) -> const std::string& { return p.string(name); });
+}
+
+CyclesPrincipledInputs cycles_principled_inputs(const std::vector<ParamSpec>& params,
+                                                const PlainValue* values) {
+  PlainReader read(params, values);
+  return principled_inputs(
+      [&](const char* name) { return read(name).x; },
+      [&](const char* name) { return plain_rgb(read(name)); },
+      // An enum's plain value is the index of its choice in the declaration.
+      [&](const char* name) -> const std::string& {
+        const size_t i = read.index(name);
+        return params[i].choices[static_cast<size_t>(values[i].x)];
+      });
 }
 
 ModelInfo cycles_principled_model() {
@@ -459,6 +509,10 @@ ModelInfo cycles_principled_model() {
   m.create = [](const ParamSet& p) -> std::unique_ptr<BxDF> {
     return std::make_unique<CyclesPrincipled>(cycles_principled_inputs(p));
   };
+  m.place = [params = m.params](const PlainValue* v, ClosureArena& arena) -> const BxDF* {
+    return arena.make<CyclesPrincipled>(cycles_principled_inputs(params, v));
+  };
+  m.place_size = sizeof(CyclesPrincipled);
   return m;
 }
 

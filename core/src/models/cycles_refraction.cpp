@@ -22,6 +22,7 @@ ModelInfo cycles_refraction_model() {
   m.create = [](const ParamSet& p) {
     return make_cycles_dielectric(CyclesDielectricNode::kRefraction, p);
   };
+  set_cycles_dielectric_place(m, CyclesDielectricNode::kRefraction);
   return m;
 }
 

@@ -14,6 +14,11 @@ ModelInfo cycles_translucent_model() {
   m.create = [](const ParamSet& p) {
     return std::make_unique<CyclesTranslucent>(to_rgb(p.rgb("color")));
   };
+  const size_t color = param_index(m.params, "color");
+  m.place = [=](const PlainValue* v, ClosureArena& arena) -> const BxDF* {
+    return arena.make<CyclesTranslucent>(plain_rgb(v[color]));
+  };
+  m.place_size = sizeof(CyclesTranslucent);
   return m;
 }
 

@@ -18,6 +18,11 @@ ModelInfo cycles_velvet_model() {
     return std::make_unique<CyclesVelvet>(to_rgb(p.rgb("color")),
                                           static_cast<float>(p.number("sigma")));
   };
+  const size_t color = param_index(m.params, "color"), sigma = param_index(m.params, "sigma");
+  m.place = [=](const PlainValue* v, ClosureArena& arena) -> const BxDF* {
+    return arena.make<CyclesVelvet>(plain_rgb(v[color]), v[sigma].x);
+  };
+  m.place_size = sizeof(CyclesVelvet);
   return m;
 }
 

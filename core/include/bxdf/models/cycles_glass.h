@@ -155,6 +155,8 @@ class CyclesSharpDielectric final : public BxDFImpl<CyclesSharpDielectric> {
 
 namespace bxdf {
 
+struct ModelInfo;  // bxdf/registry.h
+
 // The node's inputs as the closures see them (svm/closure.h and the node's compile step):
 // α = roughness², η = max(ior, 1e-5), and whether the closures are the delta form (the Sharp
 // distribution, roughness <= 1e-4, αx·αy <= 1e-7, or |η − 1| < 1e-4).
@@ -169,5 +171,8 @@ CyclesDielectricInputs cycles_dielectric_inputs(const std::string& distribution,
 // Builds the Glass or Refraction node's model from validated registry parameters (`color`,
 // `distribution`, `roughness`, `ior`).
 std::unique_ptr<BxDF> make_cycles_dielectric(CyclesDielectricNode node, const ParamSet& validated);
+// Sets m.place and m.place_size for the Glass or Refraction node: the same builder as
+// make_cycles_dielectric, from plain values (m.params must already be declared).
+void set_cycles_dielectric_place(ModelInfo& m, CyclesDielectricNode node);
 
 }  // namespace bxdf

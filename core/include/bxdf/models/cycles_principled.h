@@ -69,6 +69,11 @@ struct CyclesPrincipledInputs {
 
 // Maps validated registry parameters (make("cycles_principled", ...)) to the inputs.
 CyclesPrincipledInputs cycles_principled_inputs(const ParamSet& validated);
+// The same mapping from one plain value per declared parameter (ModelInfo::place): `params`
+// is the model's declaration; no allocation.
+struct PlainValue;  // bxdf/registry.h
+CyclesPrincipledInputs cycles_principled_inputs(const std::vector<ParamSpec>& params,
+                                                const PlainValue* values);
 
 class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
  public:
