@@ -70,16 +70,17 @@ def test_compare_renders_a_two_material_scene_into_a_labelled_result(tmp_path, b
 
     labels = {p["material"]: p for p in result["pairings"]}
     assert labels["Paired"]["CYCLES"][0] == "exact"
-    assert labels["Own Nodes"]["CYCLES"][0] == "unsupported"
-    assert "own node tree" in labels["Own Nodes"]["CYCLES"][1]
+    # A node material: BxDF Lab translates its tree (a default Principled BSDF) exactly.
+    assert labels["Own Nodes"]["CYCLES"][0] == "exact"
+    assert "both render its node tree" in labels["Own Nodes"]["CYCLES"][1]
     assert labels["Own Nodes"]["POVRAY_RENDER"][0] == "unsupported"
     with open(result["report"], encoding="utf-8") as f:
         page = f.read()
-    for text in ("Paired", "Own Nodes", "exact", "unsupported", "own node tree", "comparison.png",
+    for text in ("Paired", "Own Nodes", "exact", "unsupported", "both render its node tree", "comparison.png",
                  "Node coverage", "Principled BSDF", "ShaderNodeBsdfPrincipled"):
         assert text in page, text
     coverage = {p["material"]: p["coverage"] for p in result["pairings"]}
-    assert {n["status"] for n in coverage["Own Nodes"]} == {"unsupported"}
+    assert {n["status"] for n in coverage["Own Nodes"]} == {"exact"}
     assert {n["status"] for n in coverage["Paired"]} == {"exact"}
 
     after = (scene.render.engine, scene.render.filepath, scene.render.resolution_percentage,

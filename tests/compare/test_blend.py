@@ -51,5 +51,5 @@ def test_blend_renders_a_saved_scene_with_the_coverage_table(tmp_path):
     with open(os.path.join(run_dir, "index.html"), encoding="utf-8") as fh:
         page = fh.read()
     assert "Panel Only" in page and "Node Tree" in page and "Node coverage" in page
-    assert "ShaderNodeBsdfPrincipled" in page and "not translated" in page
+    assert "ShaderNodeBsdfPrincipled" in page and "both render its node tree" in page
     assert "unsupported" in page and "24 px" in page.replace("\n", " ")

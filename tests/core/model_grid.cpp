@@ -17,7 +17,7 @@ ParamSet params(std::initializer_list<std::pair<const char*, Value>> items) {
 }
 
 GridEntry entry(std::string label, ParamSet p, double recorded_max_albedo = 0.0) {
-  return {std::move(label), std::move(p), recorded_max_albedo, {}, false};
+  return {std::move(label), std::move(p), recorded_max_albedo, {}, false, {}};
 }
 
 // One Lafortune lobe with the same coefficients in every channel.
@@ -177,6 +177,10 @@ std::map<std::string, std::vector<GridEntry>> build_grid() {
   // Glass and refraction: α = roughness², ior below over above (inverted seen from below).
   // The rough ones gain energy through Cycles' refraction lobe (see cycles_refraction below)
   // and its weight max(1e-4, 1 − F); measured maxima recorded.
+  GridEntry multi_glass = entry("multi_ggx", params({{"distribution", "multi_ggx"},
+                                                     {"roughness", 0.7}, {"ior", 1.45}}));
+  multi_glass.stochastic_f = true;
+  multi_glass.furnace_unchecked = "heavy-tailed walk estimator (see GridEntry::furnace_unchecked)";
   g["cycles_glass"] = {
       entry("ggx", params({{"distribution", "ggx"}, {"roughness", 0.5}, {"ior", 1.5}}), 1.0751),
       entry("beckmann_tinted", params({{"distribution", "beckmann"}, {"roughness", 0.6},
@@ -185,8 +189,7 @@ std::map<std::string, std::vector<GridEntry>> build_grid() {
       entry("ggx_ior_below_one", params({{"distribution", "ggx"}, {"roughness", 0.7},
                                          {"ior", 0.7}}),
             1.1082),
-      entry("multi_ggx", params({{"distribution", "multi_ggx"}, {"roughness", 0.7},
-                                 {"ior", 1.45}})),
+      multi_glass,
       entry("sharp", params({{"distribution", "sharp"}, {"ior", 1.5}})),
       entry("ggx_singular", params({{"distribution", "ggx"}, {"roughness", 0.01}, {"ior", 2.4},
                                     {"color", RGBValue{1.0, 0.9, 0.8}}})),

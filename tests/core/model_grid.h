@@ -26,6 +26,11 @@ struct GridEntry {
   // f averages a few random walks (multiple-scattering GGX): a fixed function, but noisy at
   // the scale adaptive quadrature refines to, so the energy test integrates it by sampling only.
   bool stochastic_f = false;
+  // Why the white-furnace comparison cannot hold this entry to its tolerance (empty: it does).
+  // Multiscatter glass: f/pdf is heavy-tailed (single walks through the dielectric), so two
+  // 64k-sample estimates of the same albedo differ by up to 5%; its lobe's energy is checked
+  // against a long walk average in test_multiscatter_ggx.cpp instead.
+  std::string furnace_unchecked;
   bool energy_conserving() const { return recorded_max_albedo == 0.0; }
 };
 

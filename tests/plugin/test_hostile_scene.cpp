@@ -135,8 +135,12 @@ TEST_F(HostileScene, PngWriteThatFailsIsReportedAndKeepsTheOldImage) {
   // (SIGXFSZ ignored). The PNG writer does not notice; the render must fail all the same, and
   // leave the previous image and no temporary behind. (In a child process: OIIO's state after a
   // failed PNG write is not to be trusted in the test process.)
-  // One sample per pixel under a grey world: noise, so the PNG is far larger than the limit.
-  std::string text = scene_with(kCamera, kQuad, R"({"width": 96, "height": 96, "spp": 1})");
+  // One sample per pixel under a grey world, with a floor in front of the wall that blocks part
+  // of the world from it: noise, so the PNG is far larger than the limit. (The wall alone would
+  // be noise-free: a constant world is found by cosine sampling exactly.)
+  const std::string floor =
+      R"({"shape": "quad", "corner": [-1, -2, -1], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": "grey"})";
+  std::string text = scene_with(kCamera, kQuad + ", " + floor, R"({"width": 96, "height": 96, "spp": 1})");
   text.insert(1, R"("world": 0.8, )");
   const std::string scene = write("s.json", text);
   const std::string target = (dir_ / "out.png").string();

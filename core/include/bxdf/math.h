@@ -101,6 +101,21 @@ inline bool normalize_direction(Vec3& v) {
   return true;
 }
 
+// A sampled direction returned with the bits f will see: normalised to a fixed point of
+// normalize_direction (the normalisation every entry point applies), which one or two passes
+// reach. Lobes whose f is steep in float (grazing rough refraction) or hashes its directions
+// (multiscatter) need it so that sample_f reports f() of the direction it returns. False for a
+// degenerate vector.
+inline bool snap_to_unit(Vec3& v) {
+  for (int i = 0; i < 4; ++i) {
+    Vec3 w = v;
+    if (!normalize_direction(w)) return false;
+    if (w.x == v.x && w.y == v.y && w.z == v.z) return true;
+    v = w;
+  }
+  return true;
+}
+
 // Two-sided coordinate system around a unit vector (Duff et al. 2017, branchless ONB).
 inline void coordinate_system(const Vec3& n, Vec3* s, Vec3* t) {
   const float sign = std::copysign(1.0f, n.z);

@@ -72,18 +72,8 @@ struct MultiscatterSetup {
   MultiscatterFresnel fresnel = MultiscatterFresnel::kColor;
 };
 
-// f hashes the bits of its directions, so a sampled direction must be returned with the bits
-// that f will see: normalised to a fixed point of normalize_direction (the normalisation every
-// entry point applies), which one or two passes reach. False for a degenerate vector.
-inline bool snap_to_unit(Vec3& v) {
-  for (int i = 0; i < 4; ++i) {
-    Vec3 w = v;
-    if (!normalize_direction(w)) return false;
-    if (w.x == v.x && w.y == v.y && w.z == v.z) return true;
-    v = w;
-  }
-  return true;
-}
+// f hashes the bits of its directions, so a sampled direction must be snapped (math.h).
+using bxdf::snap_to_unit;
 
 // Cycles' helpers (bsdf_util.h, bsdf_microfacet_multi.h), exposed for the models and tests.
 float cycles_fresnel_dielectric_cos(float cos_i, float eta);

@@ -89,6 +89,8 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
       d.flags = kTransmission | kGlossy;
     }
     d.wi = c.mirrored ? Vec3(wi.x, wi.y, -wi.z) : wi;
+    // Grazing rough refraction is steep in float: return the bits f() will see.
+    if (d.ok && !snap_to_unit(d.wi)) d.ok = false;
     return d;
   }
 
