@@ -12,6 +12,7 @@
 
 #include "bxdf/render/image_io.h"
 #include "bxdf/render/scene_json.h"
+#include "../scratch_folder.h"
 
 namespace fs = std::filesystem;
 using bxdf::render::Image;
@@ -19,22 +20,11 @@ using bxdf::render::read_image;
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
+using RunResult = bxdf::test_support::ShellResult;
 
+// bxdf-render with `args`; stdout and stderr together.
 RunResult run(const std::string& args) {
-  RunResult r;
-  const std::string cmd = std::string(BXDF_RENDER_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.output.append(buf, n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
+  return bxdf::test_support::run_shell(std::string(BXDF_RENDER_EXE) + " " + args + " 2>&1");
 }
 
 class CLI : public ::testing::Test {
