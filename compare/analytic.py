@@ -1,5 +1,5 @@
 """Closed-form images of the scenes that have them: spheres lit by point or sun lights, direct light
-only (plus the Lambertian furnace). One ray through each pixel centre, the same camera as Blender's
+only (plus one Lambertian sphere in a constant or z-gradient world, gradient_world.py). One ray through each pixel centre, the same camera as Blender's
 (sensor fit horizontal), shadow rays against every sphere, and the model's f from the core:
 
     L = sum over lights of f(wo, wi) * cos(theta_i) * E_light,   E = I / d^2 (point) or E (sun).
@@ -10,7 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .scene_spec import PointLight, SceneSpec, Sphere, SunLight, is_lambert_furnace
+from . import gradient_world
+from .scene_spec import PointLight, SceneSpec, Sphere, SunLight, ZGradientWorld, is_lambert_furnace
 
 RAY_EPSILON = 1e-6
 
@@ -106,11 +107,24 @@ def render(spec: SceneSpec) -> AnalyticImage:
 
     image = np.zeros((len(dirs), 3))
     tolerance = np.zeros((len(dirs), 3))
-    image[obj_id < 0] = spec.world_color
+    gradient = spec.environment if isinstance(spec.environment, ZGradientWorld) else None
+    if gradient is None:
+        image[obj_id < 0] = spec.world_color
+    else:
+        image[obj_id < 0] = gradient_world.radiance(gradient, dirs[obj_id < 0])[:, None]
     if is_lambert_furnace(spec):
-        hit = obj_id >= 0
+        hit = np.nonzero(obj_id >= 0)[0]
         reflectance = np.asarray(spheres[0].material.params["reflectance"], float)
-        image[hit] = reflectance * np.asarray(spec.world_color, float)
+        if gradient is None:
+            image[hit] = reflectance * np.asarray(spec.world_color, float)
+        else:
+            sphere = spheres[0]
+            p = origin + dirs[hit] * t_hit[hit, None]
+            n = (p - np.asarray(sphere.center, float)) / sphere.radius
+            image[hit] = gradient_world.lambert_radiance(gradient, reflectance, n)
+            # dL/dn_z = 2/3 b R: the tessellation's normal error moves n_z by at most eps.
+            tolerance[hit] = (2.0 / 3.0 * abs(gradient.b) * reflectance[None, :]
+                              * _normal_error(dirs[hit], n)[:, None])
     else:
         for i, s in enumerate(spheres):
             sel = np.nonzero(obj_id == i)[0]
@@ -121,14 +135,19 @@ def render(spec: SceneSpec) -> AnalyticImage:
                          tolerance.reshape(h, w, 3).astype(np.float32))
 
 
+def _normal_error(dirs, n):
+    """The tessellated sphere's normal error (radians) at the hits of `dirs` with true normals n."""
+    cos_v = np.clip(-np.einsum("ij,ij->i", dirs, n), 1e-6, 1.0)
+    tan_v = np.minimum(np.sqrt(1.0 - cos_v ** 2) / cos_v, MAX_VIEW_TAN)
+    return TESSELLATION_DELTA ** 2 / 8.0 * (1.0 + tan_v)
+
+
 def _shade_with_tolerance(spec, spheres, sphere, origin, dirs, t):
     model = make_model(sphere.material.model, sphere.material.params)
     p = origin + dirs * t[:, None]
     n = (p - np.asarray(sphere.center, float)) / sphere.radius
     value = _shade(spec, spheres, model, p, n, dirs)
-    cos_v = np.clip(-np.einsum("ij,ij->i", dirs, n), 1e-6, 1.0)
-    tan_v = np.minimum(np.sqrt(1.0 - cos_v ** 2) / cos_v, MAX_VIEW_TAN)
-    eps = TESSELLATION_DELTA ** 2 / 8.0 * (1.0 + tan_v)
+    eps = _normal_error(dirs, n)
     tangent, bitangent = _frame(n)
     deviation = np.zeros_like(value)
     for direction in (tangent, -tangent, bitangent, -bitangent):

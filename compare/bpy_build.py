@@ -7,12 +7,15 @@ diffs (metrics.edge_mask)."""
 from __future__ import annotations
 
 import math
+import os
 
 import bmesh
 import bpy
 from mathutils import Matrix, Vector
 
-from .scene_spec import Box, PointLight, Quad, SceneSpec, Sphere, SunLight
+from . import gradient_world
+from .scene_spec import (AreaLight, Box, EnvironmentMap, PointLight, Quad, SceneSpec, Sphere,
+                         SpotLight, SunLight, ZGradientWorld)
 
 SPHERE_SEGMENTS = 128
 SPHERE_RINGS = 64
@@ -70,9 +73,93 @@ def look_at_rotation(location, target):
     return direction.to_track_quat("-Z", "Y")
 
 
-def build(spec: SceneSpec, materials: dict) -> dict:
-    """Builds camera, lights and objects; `materials` maps material name -> bpy material (made by
-    the caller so that each engine's set-up can fill it). Returns {object name: bpy object}."""
+def _aim(obj, direction):
+    """Blender lights shine along their local -Z."""
+    obj.rotation_mode = "QUATERNION"
+    obj.rotation_quaternion = Vector(direction).to_track_quat("-Z", "Y")
+
+
+def _build_light(i, light):
+    if isinstance(light, (PointLight, SpotLight)):
+        kind = "POINT" if isinstance(light, PointLight) else "SPOT"
+        data = bpy.data.lights.new(f"{kind.lower()}_{i}", kind)
+        data.energy = 4.0 * math.pi * light.intensity   # I = P / (4 pi)
+        data.shadow_soft_size = light.radius
+        obj = _link(data.name, data)
+        obj.location = light.location
+        if kind == "SPOT":
+            data.spot_size = math.radians(light.spot_size_deg)
+            data.spot_blend = light.blend
+            _aim(obj, light.direction)
+    elif isinstance(light, SunLight):
+        data = bpy.data.lights.new(f"sun_{i}", "SUN")
+        data.energy = light.irradiance
+        data.angle = math.radians(light.angle_deg)
+        # A sun shines away from `direction`.
+        _aim(_link(f"sun_{i}", data), -Vector(light.direction))
+    elif isinstance(light, AreaLight):
+        data = bpy.data.lights.new(f"area_{i}_{light.shape.lower()}", "AREA")
+        data.shape = light.shape
+        data.size = light.size
+        data.size_y = light.size_y if light.shape in ("RECTANGLE", "ELLIPSE") else light.size
+        data.energy = light.power
+        obj = _link(data.name, data)
+        obj.location = light.center
+        _aim(obj, light.direction)
+    else:
+        raise TypeError(f"unknown light {light!r}")
+    data.color = light.color
+
+
+def _environment_image(environment, work_dir):
+    """The image file of the world: the map's own, or the z-gradient written into work_dir."""
+    if isinstance(environment, EnvironmentMap):
+        return bpy.data.images.load(environment.path, check_existing=True)
+    from . import imageio  # noqa: PLC0415 - OpenImageIO is needed only for a generated world
+
+    path = os.path.join(work_dir, f"z_gradient_{environment.a:g}_{environment.b:g}.exr")
+    imageio.write_exr(path, gradient_world.image(environment))
+    image = bpy.data.images.load(path)
+    image.colorspace_settings.name = "Linear"
+    return image
+
+
+def _build_world(spec, scene, work_dir):
+    """Background colour, or an Environment Texture fed by Texture Coordinate > Mapping (the
+    rotation about +Z), as a user builds an HDRI world."""
+    world = scene.world or bpy.data.worlds.new("world")
+    scene.world = world
+    world.use_nodes = True
+    world.color = spec.world_color
+    tree = world.node_tree
+    background = tree.nodes["Background"]
+    background.inputs["Color"].default_value = (*spec.world_color, 1.0)
+    background.inputs["Strength"].default_value = 1.0
+    environment = spec.environment
+    if environment is None:
+        return
+    if work_dir is None and isinstance(environment, ZGradientWorld):
+        raise ValueError(f"scene '{spec.name}': a z-gradient world needs a work_dir to write "
+                         "its image to")
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    mapping = tree.nodes.new("ShaderNodeMapping")
+    texture = tree.nodes.new("ShaderNodeTexEnvironment")
+    texture.image = _environment_image(environment, work_dir)
+    rotation = getattr(environment, "rotation_z_deg", 0.0)
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, math.radians(rotation))
+    tree.links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
+    tree.links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+    tree.links.new(texture.outputs["Color"], background.inputs["Color"])
+    background.inputs["Strength"].default_value = getattr(environment, "strength", 1.0)
+    if environment.map_resolution:
+        world.cycles.sampling_method = "MANUAL"
+        world.cycles.sample_map_resolution = environment.map_resolution
+
+
+def build(spec: SceneSpec, materials: dict, work_dir: str = None) -> dict:
+    """Builds camera, lights, world and objects; `materials` maps material name -> bpy material
+    (made by the caller so that each engine's set-up can fill it); `work_dir` receives generated
+    files (a z-gradient world's image). Returns {object name: bpy object}."""
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y = spec.resolution
     scene.render.resolution_percentage = 100
@@ -90,31 +177,8 @@ def build(spec: SceneSpec, materials: dict) -> dict:
     scene.camera = camera
 
     for i, light in enumerate(spec.lights):
-        if isinstance(light, PointLight):
-            data = bpy.data.lights.new(f"point_{i}", "POINT")
-            data.energy = 4.0 * math.pi * light.intensity   # I = P / (4 pi)
-            data.shadow_soft_size = 0.0
-            obj = _link(f"point_{i}", data)
-            obj.location = light.location
-        elif isinstance(light, SunLight):
-            data = bpy.data.lights.new(f"sun_{i}", "SUN")
-            data.energy = light.irradiance
-            data.angle = 0.0
-            obj = _link(f"sun_{i}", data)
-            obj.rotation_mode = "QUATERNION"
-            # A sun shines along its local -Z, i.e. away from `direction`.
-            obj.rotation_quaternion = (-Vector(light.direction)).to_track_quat("-Z", "Y")
-        else:
-            raise TypeError(f"unknown light {light!r}")
-        data.color = light.color
-
-    world = scene.world or bpy.data.worlds.new("world")
-    scene.world = world
-    world.use_nodes = True
-    background = world.node_tree.nodes["Background"]
-    background.inputs["Color"].default_value = (*spec.world_color, 1.0)
-    background.inputs["Strength"].default_value = 1.0
-    world.color = spec.world_color
+        _build_light(i, light)
+    _build_world(spec, scene, work_dir)
 
     objects = {}
     for item in spec.objects:

@@ -90,7 +90,7 @@ def main():
 
     bpy_build.clear_scene()
     materials = {m.name: bpy.data.materials.new(m.name) for m in spec.materials()}
-    objects = bpy_build.build(spec, materials)
+    objects = bpy_build.build(spec, materials, out_dir)
     engine_setup.common_settings(spec)
 
     meta["materials"] = {}

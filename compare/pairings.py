@@ -11,13 +11,15 @@ which `approximate` (a best mapping: the diff is the finding). Facts from refere
   translates the node tree Cycles renders (the driver records the translation's coverage as the
   add-on's label, which the report checks against this).
 - Everything else is approximate; so is any POV-Ray global illumination (radiosity is not a path
-  tracer) and any scene without analytic truth where a model is approximate in one engine."""
+  tracer), any POV-Ray render of soft lights (sphere, spot radius, sun angle, area lights) or an
+  environment-map world (render_povray exports neither as Cycles has them), and any scene without
+  analytic truth where a model is approximate in one engine."""
 from __future__ import annotations
 
 from itertools import combinations
 
 from . import ALL_ENGINES
-from .scene_spec import NODES, SceneSpec
+from .scene_spec import NODES, SceneSpec, soft_lighting
 
 CORE = {"BXDF_LAB", "ANALYTIC"}
 EXACT_IN = {
@@ -39,7 +41,7 @@ def exact_engines(model: str) -> set:
 
 
 def label(spec: SceneSpec, a: str, b: str) -> str:
-    if spec.povray_radiosity and "POVRAY_RENDER" in (a, b):
+    if "POVRAY_RENDER" in (a, b) and (spec.povray_radiosity or soft_lighting(spec)):
         return "approximate"
     for material in spec.materials():
         engines = exact_engines(material.model)
@@ -54,6 +56,9 @@ def approximations(spec: SceneSpec, a: str, b: str) -> list:
     if spec.povray_radiosity and "POVRAY_RENDER" in (a, b):
         reasons.append("POV-Ray's global illumination is radiosity (irradiance caching), "
                        "not path tracing")
+    if "POVRAY_RENDER" in (a, b):
+        reasons.extend(f"POV-Ray's export has no {kind} as Cycles renders it"
+                       for kind in soft_lighting(spec))
     for material in spec.materials():
         engines = exact_engines(material.model)
         for engine in (a, b):

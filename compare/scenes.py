@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 
+from .light_scenes import LIGHT_SCENES
 from .node_scenes import DEFAULT_NODE_SCENES, NODE_SCENES
 from .scene_spec import Box, Camera, Material, PointLight, Quad, SceneSpec, Sphere, SunLight
 
@@ -248,6 +249,7 @@ SCENES = {f().name: f for f in (
     sweep_oren_nayar_sigma, cornell, sweep_principled_metallic_roughness,
     sweep_principled_lobes, lit_cycles_glossy_ashikhmin_shirley, lit_cycles_velvet,
     cycles_glass_room)}
+SCENES.update({f().name: f for f in LIGHT_SCENES})
 
 DEFAULT_SCENES = tuple(SCENES) + tuple(f().name for f in DEFAULT_NODE_SCENES)
 SCENES.update({f().name: f for f in NODE_SCENES})
