@@ -91,14 +91,19 @@ class BXDFLAB_OT_compare_renders(bpy.types.Operator):
             context.workspace.status_text_set(
                 f"Compare Renders: {compare.ENGINE_NAMES[engine_id]} ({done} of "
                 f"{len(compare.ENGINES)}), {self.size} px, {self.samples} samples — Esc to stop")
-            bpy.ops.render.render("INVOKE_DEFAULT", write_still=True)
-            return True
+            started = bpy.ops.render.render("INVOKE_DEFAULT", write_still=True)
+            if "RUNNING_MODAL" in started:
+                return True
+            self.run.end(f"Blender did not start the render job ({', '.join(sorted(started))}); "
+                         "is another render running?")
         return False
 
     def modal(self, context, event):
         if event.type == "ESC":
             return self._end(context, finished=False)
-        if event.type != "TIMER" or self.done is None:
+        # render_complete runs on the job's thread before the job ends, and render.render
+        # refuses to start while a render job exists: wait for the job itself to end.
+        if event.type != "TIMER" or self.done is None or bpy.app.is_job_running("RENDER"):
             return {"PASS_THROUGH"}
         if self.done == "cancel":  # Esc in the render job
             self.run.end("cancelled")
