@@ -58,3 +58,4 @@ def test_compare_renders_runs_as_render_jobs_and_shows_its_figure(windowed):
     assert [(engine, ok) for engine, ok, _ in compare["results"]] == [
         ("BXDF_LAB", True), ("CYCLES", True), ("POVRAY_RENDER", True)], compare["results"]
     assert compare["shown"] == "BxDF Lab comparison" and compare["report"] and compare["restored"]
+    assert compare["windows"] == 1  # the Render window the jobs opened is closed, not over the figure

@@ -188,6 +188,7 @@ def compare_steps():
         results=compare.last_result["results"],
         shown=shown.name if shown else "",
         report=os.path.exists(compare.last_result["report"]),
+        windows=len(bpy.context.window_manager.windows),
         restored=(scene.render.engine, scene.render.resolution_percentage, scene.render.filepath) == before)
     screenshot("IMAGE_EDITOR", "compare_result.png")
     area("IMAGE_EDITOR").type = "VIEW_3D"
