@@ -78,13 +78,14 @@ def show(name, path):
     return image
 
 
-def show_in_image_editor(context, image):
-    """Shows `image` in an open Image Editor; False when none is open (headless, or the user
-    has none: the image is then in the Image Editor's browse list)."""
+def show_in_image_editor(context, image, windows=None):
+    """Shows `image` in an open Image Editor of `windows` (default: every window); False when
+    none is open (headless, or the user has none: the image is then in the Image Editor's
+    browse list)."""
     window_manager = getattr(context, "window_manager", None)
     if image is None or window_manager is None:
         return False
-    for window in window_manager.windows:
+    for window in (window_manager.windows if windows is None else windows):
         for area in window.screen.areas:
             if area.type == "IMAGE_EDITOR":
                 image.size[:]  # loads the image, so that its size is known to the fit below

@@ -171,13 +171,24 @@ def compare_steps():
     with bpy.context.temp_override(window=bpy.context.window, area=area("IMAGE_EDITOR")):
         started = bpy.ops.bxdf_lab.compare_renders("EXEC_DEFAULT", directory=folder, size=48, samples=4)
     result["compare"] = {"started": list(started)}
-    yield from wait_for(lambda: compare.last_result.get("folder") == folder, "Compare Renders")
+
+    def slow_handler(*_):
+        time.sleep(1.0)
+    # Another add-on's slow render_complete handler, after the operator's: each render job
+    # outlives render_complete by a second, and a next render.render in that second is refused
+    # (only one render job at a time). The operator must wait for the job itself to end.
+    bpy.app.handlers.render_complete.append(slow_handler)
+    try:
+        yield from wait_for(lambda: compare.last_result.get("folder") == folder, "Compare Renders")
+    finally:
+        bpy.app.handlers.render_complete.remove(slow_handler)
     yield 0.5
     shown = area("IMAGE_EDITOR").spaces.active.image
     result["compare"].update(
         results=compare.last_result["results"],
         shown=shown.name if shown else "",
         report=os.path.exists(compare.last_result["report"]),
+        windows=len(bpy.context.window_manager.windows),
         restored=(scene.render.engine, scene.render.resolution_percentage, scene.render.filepath) == before)
     screenshot("IMAGE_EDITOR", "compare_result.png")
     area("IMAGE_EDITOR").type = "VIEW_3D"
@@ -205,10 +216,7 @@ def steps():
     with bpy.context.temp_override(window=bpy.context.window, area=view, scene=bpy.context.scene):
         view.spaces.active.shading.type = "SOLID"  # stops the viewport render before quitting
     yield 0.5
-    # The modal Compare Renders waits forever after BxDF Lab's render job since the node-material
-    # merge (issue 13's note); run it on request only, until that is found.
-    if os.environ.get("BXDF_WINDOWED_COMPARE") == "1":
-        yield from compare_steps()
+    yield from compare_steps()
 
 
 def run():

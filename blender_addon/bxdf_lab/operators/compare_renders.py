@@ -65,6 +65,7 @@ class BXDFLAB_OT_compare_renders(bpy.types.Operator):
 
     def _start_modal(self, context, options):
         self.run = compare.CompareRun(context.scene, options)
+        self.windows_before = {w.as_pointer() for w in context.window_manager.windows}
         self.done = None  # set by the render handlers: "complete" or "cancel"
         bpy.app.handlers.render_complete.append(self._on_complete)
         bpy.app.handlers.render_cancel.append(self._on_cancel)
@@ -91,14 +92,19 @@ class BXDFLAB_OT_compare_renders(bpy.types.Operator):
             context.workspace.status_text_set(
                 f"Compare Renders: {compare.ENGINE_NAMES[engine_id]} ({done} of "
                 f"{len(compare.ENGINES)}), {self.size} px, {self.samples} samples — Esc to stop")
-            bpy.ops.render.render("INVOKE_DEFAULT", write_still=True)
-            return True
+            started = bpy.ops.render.render("INVOKE_DEFAULT", write_still=True)
+            if "RUNNING_MODAL" in started:
+                return True
+            self.run.end(f"Blender did not start the render job ({', '.join(sorted(started))}); "
+                         "is another render running?")
         return False
 
     def modal(self, context, event):
         if event.type == "ESC":
             return self._end(context, finished=False)
-        if event.type != "TIMER" or self.done is None:
+        # render_complete runs on the job's thread before the job ends, and render.render
+        # refuses to start while a render job exists: wait for the job itself to end.
+        if event.type != "TIMER" or self.done is None or bpy.app.is_job_running("RENDER"):
             return {"PASS_THROUGH"}
         if self.done == "cancel":  # Esc in the render job
             self.run.end("cancelled")
@@ -119,11 +125,15 @@ class BXDFLAB_OT_compare_renders(bpy.types.Operator):
         if not finished:
             self.report({"WARNING"}, "Compare Renders stopped; the scene's settings are restored")
             return {"CANCELLED"}
-        return self._finish(context, self.run)
+        return self._finish(context, self.run, self._render_windows(context))
+
+    def _render_windows(self, context):
+        """The windows the run's render jobs opened (Blender's Render window, by default)."""
+        return [w for w in context.window_manager.windows if w.as_pointer() not in self.windows_before]
 
     # ---- the result -----------------------------------------------------------------------
 
-    def _finish(self, context, run):
+    def _finish(self, context, run, render_windows=()):
         for result in run.results:
             if not result.ok:
                 self.report({"WARNING"}, f"{compare.ENGINE_NAMES[result.engine]}: {result.message}")
@@ -131,7 +141,16 @@ class BXDFLAB_OT_compare_renders(bpy.types.Operator):
         if image is None:
             self.report({"ERROR"}, "Compare Renders: no engine rendered")
             return {"CANCELLED"}
-        bake_figure.show_in_image_editor(context, image)
+        # The Render window the jobs opened would sit over the figure showing the last engine's
+        # render: the figure goes into the user's own Image Editor and that window closes; with no
+        # Image Editor of their own, the Render window shows the figure.
+        own = [w for w in context.window_manager.windows if w not in render_windows]
+        if bake_figure.show_in_image_editor(context, image, own):
+            for window in render_windows:
+                with context.temp_override(window=window):
+                    bpy.ops.wm.window_close()
+        else:
+            bake_figure.show_in_image_editor(context, image, render_windows)
         self.report({"INFO"}, f"Comparison in '{image.name}'; report: {compare.last_result['report']}")
         return {"FINISHED"}
 
