@@ -448,12 +448,16 @@ render::CameraSettings camera_from_python(py::handle v, const std::string& path)
   const py::dict d = as_dict(v, path);
   if (d.contains("missing") && py::bool_(d["missing"]))
     refuse(path, "the scene has no camera; expected a camera dict with 'matrix', 'lens', ...");
-  if (has(d, "type")) {
-    const std::string type = lower(text(d["type"], key_path(path, "type"), "'persp'"));
-    if (type != "persp" && type != "perspective")
-      refuse(key_path(path, "type"), "'" + type + "' is not supported; expected 'persp' (the renderer's camera is perspective)");
-  }
   render::CameraSettings c;
+  if (has(d, "type")) {
+    const std::string type = lower(text(d["type"], key_path(path, "type"), "'persp' or 'ortho'"));
+    if (type == "ortho" || type == "orthographic")
+      c.projection = render::Projection::Orthographic;
+    else if (type != "persp" && type != "perspective")
+      refuse(key_path(path, "type"), "'" + type + "' is not supported; expected 'persp' or 'ortho' (panoramic cameras are not rendered)");
+  }
+  if (has(d, "ortho_scale"))
+    c.ortho_scale = static_cast<float>(number(d["ortho_scale"], key_path(path, "ortho_scale"), 1e-6, kInf, "(0, inf) scene units"));
   const auto m = matrix4(required(d, "matrix", path, "the camera's 4x4 camera-to-world matrix"), key_path(path, "matrix"), true);
   for (int i = 0; i < 16; ++i) c.camera_to_world[i] = static_cast<float>(m[i]);
   if (has(d, "lens")) c.lens_mm = static_cast<float>(number(d["lens"], key_path(path, "lens"), 1e-6, kInf, "(0, inf) mm"));

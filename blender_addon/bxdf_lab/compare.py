@@ -8,8 +8,10 @@ every setting it changed; add-ons an engine needs (POV-Ray's) are enabled for th
 operator (operators/compare_renders.py) runs the steps as render jobs from a modal loop, so the UI
 stays live, with progress and Esc; headless it runs them one after the other.
 
-Each material gets a pairing label per engine: "exact" or "approximate" as its Set Up operator
-said, or "unsupported" with the reason (no set-up, or Cycles rendering a node tree of its own).
+Each material gets a pairing label per engine, following what each engine renders: a material
+BxDF Lab renders from its node tree is labelled by the translation of its nodes; one rendered from
+its BxDF Lab model is "exact" or "approximate" as its Set Up operator said, or "unsupported" with
+the reason (no set-up, or Cycles rendering a node tree of its own).
 """
 
 import html
@@ -22,7 +24,7 @@ import addon_utils
 import bpy
 import numpy as np
 
-from . import engine
+from . import engine, material_source, nodes
 
 ENGINES = ("BXDF_LAB", "CYCLES", "POVRAY_RENDER")
 ENGINE_NAMES = {"BXDF_LAB": "BxDF Lab", "CYCLES": "Cycles", "POVRAY_RENDER": "POV-Ray"}
@@ -139,32 +141,29 @@ def scene_materials(scene):
     return seen
 
 
-def _coverage(material):
-    """bxdf_lab.nodes.material_coverage(material) once node translation exists, else None."""
-    try:
-        from . import nodes
-    except ImportError:
-        return None
-    return nodes.material_coverage(material)
+def _node_pairing(nodes_coverage):
+    """(label, why) of a material BxDF Lab renders from its node tree, as Cycles does: the worst
+    status of its nodes."""
+    statuses = {n["status"] for n in nodes_coverage}
+    label = ("unsupported" if "unsupported" in statuses else
+             "approximate" if "approximate" in statuses else "exact")
+    notes = [f"{n['node']}: {n['why']}" for n in nodes_coverage if n["status"] != "exact"]
+    return label, "both render its node tree" + (f" ({'; '.join(notes)})" if notes else "")
 
 
 def cycles_pairing(material):
-    """(label, why) of this material's BxDF Lab render against Cycles'."""
+    """(label, why) of this material's BxDF Lab render against Cycles', following what each
+    renders: Cycles its node tree (engine_settings turns use_nodes on), BxDF Lab the node tree or
+    the panel's model (material_source)."""
+    if material_source.source(material) == "NODES":
+        return _node_pairing(nodes.material_coverage(material))
     settings = material.bxdf_lab
-    coverage = _coverage(material)
-    if coverage:
-        statuses = {n["status"] for n in coverage}
-        label = ("unsupported" if "unsupported" in statuses else
-                 "approximate" if "approximate" in statuses else "exact")
-        notes = [f"{n['node']}: {n['why']}" for n in coverage if n["status"] != "exact"]
-        return label, "both render its node tree" + (f" ({'; '.join(notes)})" if notes else "")
-    # Cycles renders the node tree whenever there is one (engine_settings turns use_nodes on).
     if settings.cycles_label and material.node_tree is not None:
         return settings.cycles_label, settings.cycles_mapping
     if material.node_tree is not None:
-        return "unsupported", ("Cycles renders the material's own node tree, which BxDF Lab does "
-                               "not translate; BxDF Lab renders the panel's model. "
-                               "Use Set Up Cycles Material to pair them")
+        return "unsupported", ("Cycles renders the material's own node tree; BxDF Lab renders the "
+                               f"panel's model ({settings.model}). Use Set Up Cycles Material to "
+                               "pair them, or switch the material to its Node Tree")
     return "unsupported", ("no node tree: Cycles renders its default surface; "
                            "use Set Up Cycles Material")
 
@@ -178,12 +177,11 @@ def pov_pairing(material):
 
 def coverage(material):
     """[{"node", "type", "status": exact|approximate|unsupported, "why"}]: how each node of the
-    material's tree reaches BxDF Lab. From bxdf_lab.nodes.material_coverage once node translation
-    exists; until then a tree built by Set Up Cycles Material carries its set-up label, and any
-    other tree is not translated (BxDF Lab renders the panel's model)."""
-    translated = _coverage(material)
-    if translated is not None:
-        return translated
+    material's tree reaches BxDF Lab. A material rendered from its model translates no node: a
+    tree built by Set Up Cycles Material carries its set-up label, any other is not rendered by
+    BxDF Lab."""
+    if material_source.source(material) == "NODES":
+        return nodes.material_coverage(material)
     if material.node_tree is None:
         return []
     settings = material.bxdf_lab
@@ -192,7 +190,7 @@ def coverage(material):
                  "why": f"built from the panel's model by Set Up Cycles Material: {settings.cycles_mapping}"}
                 for n in material.node_tree.nodes]
     return [{"node": n.name, "type": n.bl_idname, "status": "unsupported",
-             "why": f"not translated: BxDF Lab renders the panel's model ({settings.model})"}
+             "why": f"not rendered by BxDF Lab: it renders the panel's model ({settings.model})"}
             for n in material.node_tree.nodes]
 
 

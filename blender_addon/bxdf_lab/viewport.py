@@ -11,7 +11,10 @@ view_draw uploads it to a GPU texture and draws it through Blender's display tra
 The viewport camera comes from the region's own matrices: the inverse view matrix is the
 camera-to-world frame, and the perspective projection gives the lens (on a 36 mm horizontal
 sensor) and the shift, so that the camera view's zoom and offset, and a free view, both match what
-the region shows.
+the region shows. An orthographic projection gives the view's width in scene units (the ortho
+scale), its offset (the shift) and its depth range, which in a free orthographic view starts
+behind the eye (Blender clips it symmetrically about the pivot): the camera then moves back to the
+near plane.
 """
 
 import threading
@@ -27,22 +30,17 @@ SENSOR_WIDTH = 36.0  # mm; any width does, the lens is derived for it
 REDRAW_INTERVAL = 0.1  # s between the timer's checks for a new pass
 
 
-class ViewportUnsupported(ValueError):
-    """A view the renderer cannot draw (orthographic)."""
-
-
 def view_camera(region_data, clip, width, height):
     """The renderer's camera dict for a 3D view of `width`×`height` pixels.
 
     `region_data` is a RegionView3D (view_matrix, window_matrix, is_perspective); `clip` the view's
-    (clip start, clip end)."""
-    if not region_data.is_perspective:
-        raise ViewportUnsupported("orthographic views are not rendered by BxDF Lab (its camera is "
-                                  "perspective): switch the view to perspective (numpad 5)")
+    (clip start, clip end), used by perspective views (an orthographic projection holds its own)."""
     projection = np.array(region_data.window_matrix, dtype=np.float64)
     camera_to_world = np.array(region_data.view_matrix.inverted(), dtype=np.float32)
     for axis in range(3):  # the renderer wants an orthonormal frame
         camera_to_world[:3, axis] /= max(np.linalg.norm(camera_to_world[:3, axis]), 1e-30)
+    if not region_data.is_perspective:
+        return _orthographic_camera(projection, camera_to_world, width, height)
     # OpenGL frustum: P[0][0] = 2n/(r-l) = 2·lens/sensor, P[0][2] = (r+l)/(r-l) = 2·shift_x;
     # P[1][2] = (t+b)/(t-b), and the renderer's shift_y is in units of the (fitted) width.
     return {
@@ -54,6 +52,26 @@ def view_camera(region_data, clip, width, height):
         "sensor_fit": "horizontal",
         "shift": (float(projection[0, 2] / 2.0), float(projection[1, 2] / 2.0 * height / width)),
         "clip": (float(clip[0]), float(clip[1])),
+        "resolution": (width, height),
+    }
+
+
+def _orthographic_camera(projection, camera_to_world, width, height):
+    """OpenGL orthographic projection: P[0][0] = 2/(r−l), P[0][3] = −(r+l)/(r−l), the same for y,
+    P[2][2] = −2/(f−n), P[2][3] = −(f+n)/(f−n); near and far are depths along the view axis."""
+    ortho_scale = 2.0 / projection[0, 0]  # the view's width in scene units
+    centre = (-projection[0, 3] / projection[0, 0], -projection[1, 3] / projection[1, 1])
+    near = (projection[2, 3] + 1.0) / projection[2, 2]
+    far = (projection[2, 3] - 1.0) / projection[2, 2]
+    camera_to_world = camera_to_world.copy()
+    camera_to_world[:3, 3] -= camera_to_world[:3, 2] * near  # the eye onto the near plane (−Z looks ahead)
+    return {
+        "matrix": camera_to_world,
+        "type": "ortho",
+        "ortho_scale": float(ortho_scale),
+        "sensor_fit": "horizontal",
+        "shift": (float(centre[0] / ortho_scale), float(centre[1] / ortho_scale)),
+        "clip": (0.0, float(far - near)),
         "resolution": (width, height),
     }
 
@@ -209,14 +227,8 @@ class ViewportSession:
         key = (self.scene_version, width, height, tuple(map(tuple, region_data.view_matrix)),
                tuple(map(tuple, region_data.window_matrix)), tuple(sorted(render_settings.items())))
         if key != self.job_key:
-            try:
-                camera = view_camera(region_data, (context.space_data.clip_start,
-                                                   context.space_data.clip_end), width, height)
-            except ViewportUnsupported as exc:
-                self.stop(wait=False)
-                self.job_key = key
-                engine.update_stats("", f"BxDF Lab: {exc}")
-                return
+            camera = view_camera(region_data, (context.space_data.clip_start,
+                                               context.space_data.clip_end), width, height)
             self._restart(scene.name, camera, render_settings, key)
         job = self.job
         if job is None:

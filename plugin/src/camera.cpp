@@ -32,6 +32,8 @@ std::array<float, 16> look_at(const Vec3& eye, const Vec3& target, const Vec3& u
 }
 
 Camera::Camera(const CameraSettings& s, int width, int height) {
+  const bool orthographic = s.projection == Projection::Orthographic;
+  if (orthographic) require_positive("ortho_scale", s.ortho_scale);
   require_positive("lens_mm", s.lens_mm);
   require_positive("sensor_width_mm", s.sensor_width_mm);
   require_positive("sensor_height_mm", s.sensor_height_mm);
@@ -56,10 +58,12 @@ Camera::Camera(const CameraSettings& s, int width, int height) {
 
   // Blender (BKE_camera_params_compute_viewplane): AUTO fits the sensor width to the larger
   // image side; VERTICAL uses the sensor height. The shift is in units of the fitted side.
+  // Orthographic: ortho_scale is the fitted side, whichever sensor size (only the fit counts).
   bool horizontal = s.sensor_fit == SensorFit::Horizontal ||
                     (s.sensor_fit == SensorFit::Auto && width >= height);
   const float sensor = s.sensor_fit == SensorFit::Vertical ? s.sensor_height_mm : s.sensor_width_mm;
-  const float fitted = sensor / s.lens_mm;  // size of the fitted side at unit distance
+  // size of the fitted side at unit distance (perspective) or anywhere (orthographic)
+  const float fitted = orthographic ? s.ortho_scale : sensor / s.lens_mm;
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   if (horizontal) {
     plane_width_ = fitted;
@@ -72,6 +76,7 @@ Camera::Camera(const CameraSettings& s, int width, int height) {
   shift_y_ = s.shift_y * fitted;
   clip_start_ = s.clip_start;
   clip_end_ = s.clip_end;
+  orthographic_ = orthographic;
 
   right_ = column(s.camera_to_world, 0);
   up_ = column(s.camera_to_world, 1);

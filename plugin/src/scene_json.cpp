@@ -176,8 +176,18 @@ void read_render_settings(const Reader& r, const json& j, RenderSettings& s) {
 void read_camera(const Reader& r, const json& j, CameraSettings& c) {
   const std::string path = "camera";
   r.object(j, path);
-  r.only_keys(j, path, {"lens", "sensor_width", "sensor_height", "sensor_fit", "shift_x", "shift_y",
-                        "clip_start", "clip_end", "matrix", "position", "look_at", "up"});
+  r.only_keys(j, path, {"type", "ortho_scale", "lens", "sensor_width", "sensor_height", "sensor_fit",
+                        "shift_x", "shift_y", "clip_start", "clip_end", "matrix", "position", "look_at",
+                        "up"});
+  if (j.contains("type")) {
+    const std::string type = r.string(j["type"], "camera.type");
+    if (type == "PERSP") c.projection = Projection::Perspective;
+    else if (type == "ORTHO") c.projection = Projection::Orthographic;
+    else r.fail("camera.type", "one of \"PERSP\", \"ORTHO\"", j["type"]);
+  }
+  if (j.contains("ortho_scale"))
+    c.ortho_scale = static_cast<float>(
+        r.number_in(j["ortho_scale"], "camera.ortho_scale", 1e-6, 1e30, "(0, inf) scene units"));
   if (j.contains("lens"))
     c.lens_mm = static_cast<float>(r.number_in(j["lens"], "camera.lens", 1e-6, 1e6, "(0, inf) mm"));
   if (j.contains("sensor_width"))

@@ -28,9 +28,12 @@ def _two_material_scene():
         assert bpy.ops.bxdf_lab.set_up_povray() == {"FINISHED"}
     own_nodes = bpy.data.materials.new("Own Nodes")
     own_nodes.use_nodes = True  # a Principled BSDF of its own, never set up from the model
-    api.assign(own_nodes, "oren_nayar", sigma=20.0)
+    api.assign(own_nodes, "oren_nayar", sigma=20.0)  # BxDF Lab renders this model, not the tree
+    node_tree = bpy.data.materials.new("Node Tree")
+    node_tree.use_nodes = True  # a default Principled BSDF, which both engines render
     _plane("left", paired, -5)
     _plane("right", own_nodes, 5)
+    _plane("out of view", node_tree, 100)
     sun = bpy.data.lights.new("sun", "SUN")
     sun.energy, sun.angle = math.pi, 0.0
     scene.collection.objects.link(bpy.data.objects.new("sun", sun))
@@ -68,20 +71,24 @@ def test_compare_renders_a_two_material_scene_into_a_labelled_result(tmp_path, b
     np.testing.assert_allclose(bxdf_image[:, 2:14, :3], cycles_image[:, 2:14, :3], rtol=0.02, atol=2e-3)
     np.testing.assert_allclose(bxdf_image[:, 2:14, :3].mean(axis=(0, 1)), (0.6, 0.4, 0.2), rtol=0.02)
 
+    # Each pairing follows what the engines render: Cycles the node tree, BxDF Lab the model set
+    # by the panel or the node tree.
     labels = {p["material"]: p for p in result["pairings"]}
     assert labels["Paired"]["CYCLES"][0] == "exact"
-    # A node material: BxDF Lab translates its tree (a default Principled BSDF) exactly.
-    assert labels["Own Nodes"]["CYCLES"][0] == "exact"
-    assert "both render its node tree" in labels["Own Nodes"]["CYCLES"][1]
+    assert labels["Own Nodes"]["CYCLES"][0] == "unsupported"
+    assert "BxDF Lab renders the panel's model (oren_nayar)" in labels["Own Nodes"]["CYCLES"][1]
     assert labels["Own Nodes"]["POVRAY_RENDER"][0] == "unsupported"
+    assert labels["Node Tree"]["CYCLES"] == ("exact", "both render its node tree")
     with open(result["report"], encoding="utf-8") as f:
         page = f.read()
-    for text in ("Paired", "Own Nodes", "exact", "unsupported", "both render its node tree", "comparison.png",
-                 "Node coverage", "Principled BSDF", "ShaderNodeBsdfPrincipled"):
+    for text in ("Paired", "Own Nodes", "Node Tree", "exact", "unsupported", "both render its node tree",
+                 "comparison.png", "Node coverage", "Principled BSDF", "ShaderNodeBsdfPrincipled"):
         assert text in page, text
     coverage = {p["material"]: p["coverage"] for p in result["pairings"]}
-    assert {n["status"] for n in coverage["Own Nodes"]} == {"exact"}
+    assert {n["status"] for n in coverage["Node Tree"]} == {"exact"}
     assert {n["status"] for n in coverage["Paired"]} == {"exact"}
+    assert {n["status"] for n in coverage["Own Nodes"]} == {"unsupported"}
+    assert all("not rendered by BxDF Lab" in n["why"] for n in coverage["Own Nodes"])
 
     after = (scene.render.engine, scene.render.filepath, scene.render.resolution_percentage,
              scene.cycles.samples, scene.bxdf_lab_render.samples, paired.use_nodes)

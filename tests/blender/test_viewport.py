@@ -157,15 +157,60 @@ def test_the_view_camera_matches_the_scene_camera(scene, tmp_path):
     assert expected[..., :3].max() > 0.05  # the sphere is in view and lit
 
 
-def test_an_orthographic_view_says_it_is_not_rendered(scene):
-    engine = StandInEngine()
-    session = viewport.ViewportSession(display=RecordingDisplay(), start_timer=False)
-    view, window = _camera_view(scene, scene.camera, 16, 16)
-    context = _context(scene, 16, 16, view, window, perspective=False)
+def _orthographic_window(left, right, bottom, top, near, far):
+    """An OpenGL orthographic projection, as Blender's 3D view builds it."""
+    return mathutils.Matrix((
+        (2 / (right - left), 0, 0, -(right + left) / (right - left)),
+        (0, 2 / (top - bottom), 0, -(top + bottom) / (top - bottom)),
+        (0, 0, -2 / (far - near), -(far + near) / (far - near)),
+        (0, 0, 0, 1)))
+
+
+def test_an_orthographic_view_matches_the_orthographic_camera(scene):
+    """Through an orthographic camera the view gives F12's image; a free orthographic view, whose
+    depth range starts behind the eye (Blender clips it about the pivot), gives the same image."""
+    width, height = 48, 32
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    scene.render.resolution_percentage = 100
+    camera = scene.camera.data
+    camera.type, camera.ortho_scale = "ORTHO", 3.5
+    camera.clip_start, camera.clip_end = 0.1, 100.0
+    view, window = _camera_view(scene, scene.camera, width, height)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    data = export.export_scene(depsgraph)
+    settings = renderer.settings_dict(scene.bxdf_lab_render, "viewport")
+    expected = renderer.render(data, settings, None)[0]
+    assert expected[..., :3].max() > 0.05  # the sphere is in view and lit
+    region_data = type("R", (), {"view_matrix": view, "window_matrix": window, "is_perspective": False})()
+    got = renderer.render(dict(data, camera=viewport.view_camera(region_data, (0.01, 1000.0), width, height),
+                               resolution=(width, height)), settings, None)[0]
+    assert np.abs(got - expected).max() < 1e-4
+
+    # The same view from 5 units further ahead, near plane 4.9 behind the eye (the shift as offset).
+    half_w, half_h = 3.5 / 2, 3.5 / 2 * height / width
+    dx, dy = camera.shift_x * 3.5, camera.shift_y * 3.5
+    ahead = mathutils.Matrix.Translation((0, 0, 5.0)) @ view  # view space moves +Z: the eye −Z
+    free = _orthographic_window(dx - half_w, dx + half_w, dy - half_h, dy + half_h, 0.1 - 5.0, 100.0 - 5.0)
+    region_data = type("R", (), {"view_matrix": ahead, "window_matrix": free, "is_perspective": False})()
+    got = renderer.render(dict(data, camera=viewport.view_camera(region_data, (0.01, 1000.0), width, height),
+                               resolution=(width, height)), settings, None)[0]
+    assert np.abs(got - expected).max() < 1e-3
+
+
+def test_an_orthographic_view_renders_in_the_session(scene):
+    engine, display = StandInEngine(), RecordingDisplay()
+    session = viewport.ViewportSession(display=display, start_timer=False)
+    view = mathutils.Matrix.Translation((0, 0, -6.0)) @ mathutils.Matrix.Rotation(math.radians(-90), 4, "X")
+    context = _context(scene, 24, 16, view, _orthographic_window(-3, 3, -2, 2, -50, 50), perspective=False)
     depsgraph = bpy.context.evaluated_depsgraph_get()
     session.update(context, depsgraph, [])
     session.draw(context, depsgraph, engine)
-    assert session.job is None and "orthographic" in engine.stats
+    _wait(session.job)
+    session.draw(context, depsgraph, engine)
+    assert session.job.error == "" and "4 samples per pixel" in engine.stats
+    image = display.drawn[-1][0].image
+    assert image.shape == (16, 24, 4) and image[..., :3].max() > 0.05
+    session.stop()
 
 
 def test_a_broken_material_is_reported_in_the_viewport(scene, material):

@@ -101,3 +101,54 @@ TEST(Camera, RefusesBadSettingsByName) {
   s.clip_end = s.clip_start;
   EXPECT_THROW(Camera(s, 8, 8), ParameterError);
 }
+
+TEST(Camera, OrthographicRaysAreParallelAndSpanTheOrthoScale) {
+  CameraSettings s;
+  s.projection = Projection::Orthographic;
+  s.ortho_scale = 4.0f;
+  s.clip_start = 0.5f;
+  s.clip_end = 20.0f;
+  s.camera_to_world = look_at({0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  const Camera c(s, 200, 100);  // AUTO fit, landscape: the width spans 4, the height 2
+  EXPECT_TRUE(c.orthographic());
+  const Ray corner = c.generate_ray(200, 0);
+  const Ray centre = c.generate_ray(100, 50);
+  EXPECT_NEAR(corner.origin.x, 2.0f, 1e-5f);
+  EXPECT_NEAR(corner.origin.y, 1.0f, 1e-5f);
+  EXPECT_NEAR(corner.origin.z, 5.0f, 1e-5f);
+  for (const Ray& r : {corner, centre}) {
+    EXPECT_NEAR(r.dir.z, -1.0f, 1e-6f);
+    EXPECT_NEAR(r.tmin, 0.5f, 1e-6f);  // unit direction: t is the depth
+    EXPECT_NEAR(r.tmax, 20.0f, 1e-6f);
+  }
+  // Portrait with AUTO fit: the ortho scale goes along the height.
+  const Camera tall(s, 100, 200);
+  EXPECT_NEAR(tall.generate_ray(50, 0).origin.y, 2.0f, 1e-5f);
+  EXPECT_NEAR(tall.generate_ray(100, 100).origin.x, 1.0f, 1e-5f);
+}
+
+TEST(Camera, OrthographicShiftIsInUnitsOfTheOrthoScale) {
+  CameraSettings s;
+  s.projection = Projection::Orthographic;
+  s.ortho_scale = 3.0f;
+  s.shift_x = 0.5f;
+  s.shift_y = -0.25f;
+  const Camera c(s, 100, 50);
+  const Ray r = c.generate_ray(50, 25);
+  EXPECT_NEAR(r.origin.x, 1.5f, 1e-5f);
+  EXPECT_NEAR(r.origin.y, -0.75f, 1e-5f);
+}
+
+TEST(Camera, RefusesANonPositiveOrthoScale) {
+  CameraSettings s;
+  s.projection = Projection::Orthographic;
+  for (float bad : {0.0f, -1.0f, NAN, INFINITY}) {
+    s.ortho_scale = bad;
+    try {
+      Camera c(s, 10, 10);
+      FAIL() << "ortho_scale " << bad << " was accepted";
+    } catch (const ParameterError& e) {
+      EXPECT_NE(std::string(e.what()).find("ortho_scale"), std::string::npos) << e.what();
+    }
+  }
+}

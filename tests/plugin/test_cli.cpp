@@ -161,6 +161,10 @@ TEST_F(CLI, EachKindOfBadSceneFailsWithItsMessage) {
       {"bad_spp", replace("\"spp\": 4", "\"spp\": 0"), {"render.spp", "[1,"}},
       {"bad_fit", replace("\"lens\": 40", "\"lens\": 40, \"sensor_fit\": \"WIDE\""),
        {"camera.sensor_fit", "AUTO"}},
+      {"bad_camera_type", replace("\"lens\": 40", "\"lens\": 40, \"type\": \"PANO\""),
+       {"camera.type", "\"ORTHO\""}},
+      {"bad_ortho_scale", replace("\"lens\": 40", "\"lens\": 40, \"type\": \"ORTHO\", \"ortho_scale\": 0"),
+       {"camera.ortho_scale", "(0, inf)"}},
       {"bad_radius", replace("\"radius\": 1", "\"radius\": -1"), {"meshes[0].radius", "(0, inf)"}},
       {"clip", replace("\"clip_end\": 100", "\"clip_end\": 0.05"), {"camera.clip_end"}},
   };

@@ -1,6 +1,7 @@
-// A pinhole camera that matches Blender's perspective camera: focal length in mm, sensor
-// width/height with fit AUTO/HORIZONTAL/VERTICAL, lens shift, clip start/end (planes at a
-// depth along the view axis, as Cycles clips), looking down its local -Z with +Y up.
+// A camera that matches Blender's perspective camera (a pinhole: focal length in mm, sensor
+// width/height with fit AUTO/HORIZONTAL/VERTICAL) and its orthographic one (parallel rays over
+// ortho_scale, fitted the same way): lens shift, clip start/end (planes at a depth along the view
+// axis, as Cycles clips), looking down its local -Z with +Y up.
 #pragma once
 
 #include <array>
@@ -11,8 +12,11 @@
 namespace bxdf::render {
 
 enum class SensorFit { Auto, Horizontal, Vertical };
+enum class Projection { Perspective, Orthographic };
 
 struct CameraSettings {
+  Projection projection = Projection::Perspective;
+  float ortho_scale = 6.0f;  // orthographic: the fitted side's width in scene units, as Blender's
   float lens_mm = 50.0f;
   float sensor_width_mm = 36.0f;
   float sensor_height_mm = 24.0f;
@@ -38,6 +42,14 @@ class Camera {
   Ray generate_ray(float x, float y) const {
     const float px = (x * inv_width_ - 0.5f) * plane_width_ + shift_x_;
     const float py = (0.5f - y * inv_height_) * plane_height_ + shift_y_;
+    if (orthographic_) {  // parallel rays from the plane through the eye; clip depths from it
+      Ray r;
+      r.origin = eye_ + right_ * px + up_ * py;
+      r.dir = forward_;
+      r.tmin = clip_start_;
+      r.tmax = clip_end_;
+      return r;
+    }
     const Vec3 d = right_ * px + up_ * py - back_;
     const float len = length(d);
     Ray r;
@@ -51,7 +63,9 @@ class Camera {
 
   const Vec3& position() const { return eye_; }
   const Vec3& forward() const { return forward_; }
-  // Size of the image plane at unit distance (tan of the half angles, doubled).
+  bool orthographic() const { return orthographic_; }
+  // Size of the image plane at unit distance (tan of the half angles, doubled); orthographic:
+  // the size of the view in scene units.
   float plane_width() const { return plane_width_; }
   float plane_height() const { return plane_height_; }
   int width() const { return width_; }
@@ -63,6 +77,7 @@ class Camera {
   float inv_width_ = 1.0f, inv_height_ = 1.0f;
   float clip_start_ = 0.0f, clip_end_ = 1e30f;
   int width_ = 1, height_ = 1;
+  bool orthographic_ = false;
 };
 
 }  // namespace bxdf::render
