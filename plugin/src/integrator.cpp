@@ -31,6 +31,12 @@ Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
   return dot(dir, ng) >= 0.0f ? p + ng * eps : p - ng * eps;
 }
 
+// The shading normal turned to the side wo is on, as Cycles' shader setup turns it on back faces
+// (here transmissive surfaces keep their orientation, which tells inside from outside).
+Vec3 viewer_side_normal(const SurfacePoint& sp, const Vec3& wo) {
+  return dot(wo, sp.ng) < 0.0f ? -sp.ns : sp.ns;
+}
+
 }  // namespace
 
 PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
@@ -61,11 +67,13 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
     if (ls.pdf > 0.0f) ls.radiance = scene_.world().eval(ls.wi);
   }
   if (!(ls.pdf > 0.0f) || ls.radiance.is_black()) return RGB(0.0f);
-  const float cos_in = dot(ls.wi, sp.ns);
   RGB f = bsdf.f_cos(wo, ls.wi);  // each closure's cosine against its own (mapped) normal
   if (f.is_black()) return RGB(0.0f);
   const TerminatorOffsets& terminator = scene_.terminator(hit.mesh);
-  f *= shading_offset_factor(cos_in, terminator.shading);
+  // The shading offset dims the viewer's side only: light through a transmissive surface is not
+  // rescaled (Cycles' bsdf_eval).
+  const float cos_in = dot(ls.wi, viewer_side_normal(sp, wo));
+  if (cos_in >= 0.0f) f *= shading_offset_factor(cos_in, terminator.shading);
 
   if (!light || light->visibility.cast_shadow) {
     Vec3 p = sp.p;
@@ -229,8 +237,11 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     const float u1 = rng.uniform(), u2 = rng.uniform();
     const BSDFSample bs = bsdf.sample_f(wo, Point2(u1, u2));
     if (!bs.valid() || bs.f.is_black()) break;
-    const float cos_out = dot(bs.wi, sp.ns);
-    beta *= bs.f_cos * (shading_offset_factor(cos_out, scene_.terminator(hit.mesh).shading) / bs.pdf);
+    beta *= bs.f_cos / bs.pdf;
+    // Cycles' bsdf_sample rescales every sample of a reflecting lobe, none of a transmitting one.
+    if (!(bs.flags & kTransmission))
+      beta *= shading_offset_factor(dot(bs.wi, viewer_side_normal(sp, wo)),
+                                    scene_.terminator(hit.mesh).shading);
     if (beta.is_black()) break;
     if (transmissive && (bs.flags & kTransmission)) {
       // Entering (wo on the front side) scales radiance by (η_i/η_t)²; leaving undoes it.

@@ -237,3 +237,58 @@ def test_constant_furnace_is_no_noisier_than_cycles(tmp_path):
     rms_ours = np.sqrt(np.mean((ours - 1.0) ** 2))
     rms_cycles = np.sqrt(np.mean((cycles - 1.0) ** 2))
     assert rms_ours <= rms_cycles + 1e-4, (rms_ours, rms_cycles)
+
+
+def _diffuse_and_translucent(name):
+    """A Mix Shader of a Diffuse and a Translucent BSDF: light from both sides of the surface."""
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    nodes.clear()
+    output = nodes.new("ShaderNodeOutputMaterial")
+    mix = nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = 0.5
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (0.8, 0.6, 0.4, 1.0)
+    translucent = nodes.new("ShaderNodeBsdfTranslucent")
+    translucent.inputs["Color"].default_value = (0.4, 0.6, 0.8, 1.0)
+    links.new(diffuse.outputs[0], mix.inputs[1])
+    links.new(translucent.outputs[0], mix.inputs[2])
+    links.new(mix.outputs[0], output.inputs["Surface"])
+    return material
+
+
+@pytest.mark.parametrize("view", ["front", "back"])
+@pytest.mark.parametrize("sun_side", ["viewer", "far"])
+def test_shading_offset_dims_the_viewers_side_only_as_cycles(view, sun_side, tmp_path):
+    # A flat plane whose material reflects and transmits, seen from its front or its back, lit
+    # by a delta sun 45.6° off the normal on the viewer's side or the far side, rendered with
+    # shading offset 0 and 0.8 (frequency 1/(1 - 0.4)). Cycles turns the normal to the viewer
+    # and dims only the side the viewer is on, by cos(45.6° · 5/3)/cos 45.6° = 0.347; the light
+    # through the plane is not dimmed. One sample per pixel with one delta light is exact in
+    # both renderers. Where light comes through the plane, Cycles leaves the pixels on the quad's
+    # diagonal black (its shadow ray hits the neighbouring triangle): those are left out.
+    above = view == "front"
+    scene = _scene(1, camera=(0, 0, 3 if above else -3), target=(0, 0, 0))
+    plane = _plane(_diffuse_and_translucent("two_sided"))
+    plane.cycles.shadow_terminator_geometry_offset = 0.0
+    sun = bpy.data.lights.new("sun", "SUN")
+    sun.energy, sun.angle = 3.0, 0.0
+    sun_obj = bpy.data.objects.new("sun", sun)
+    from_above = above == (sun_side == "viewer")
+    tilt = math.acos(0.7)
+    sun_obj.rotation_euler = (tilt if from_above else math.pi - tilt, 0.0, 0.0)
+    scene.collection.objects.link(sun_obj)
+    renders = {}
+    for offset in (0.0, 0.8):
+        plane.cycles.shadow_terminator_offset = offset
+        renders[offset] = _both(scene, tmp_path)
+    lit = np.all([c.min(axis=-1) > 0.0 for _, c in renders.values()], axis=0)
+    assert lit.sum() >= SIZE * SIZE - SIZE
+    factor = math.cos(tilt / (1.0 - 0.4)) / 0.7 if sun_side == "viewer" else 1.0
+    # Half of a colour of channel mean 0.6 over pi, times irradiance 3 · 0.7, times the factor.
+    assert renders[0.8][1][lit].mean() == pytest.approx(0.5 * 0.6 / math.pi * 2.1 * factor,
+                                                        rel=1e-3)
+    for ours, cycles in renders.values():
+        np.testing.assert_allclose(ours[lit], cycles[lit], rtol=2e-3)
+

@@ -24,7 +24,11 @@ Vec3 terminator_shadow_origin(const SmoothTriangle& tri, float b1, float b2, con
                               float geometry_offset, bool* lifted);
 
 // Cycles' factor on f·cos for a shading offset s in [0, 1): the frequency multiplier
-// 1/(1 − s/2) stretches the angle; 1 when s is 0.
+// 1/(1 − s/2) stretches the angle; 1 when s is 0. cos_in is against the normal facing the
+// viewer (Cycles flips it on back faces, transmissive or not); at or below that horizon the
+// factor is 0, as Cycles' shift_cos_in gives there. Cycles applies it on the reflection side
+// only: to a light direction with cos_in >= 0 (bsdf_eval) and to a sampled direction whose lobe
+// is not a transmission (bsdf_sample, whatever side the direction falls on).
 float shading_offset_factor(float cos_in, float shading_offset);
 
 }  // namespace bxdf::render
