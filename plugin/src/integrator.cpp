@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bxdf/params.h"
+#include "bxdf/render/valid_reflection.h"
 #include "bxdf/sampling.h"
 
 namespace bxdf::render {
@@ -31,10 +32,12 @@ Vec3 offset_origin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
   return dot(dir, ng) >= 0.0f ? p + ng * eps : p - ng * eps;
 }
 
-// The shading normal turned to the side wo is on, as Cycles' shader setup turns it on back faces
-// (here transmissive surfaces keep their orientation, which tells inside from outside).
+// The normal Cycles' closures shade with, turned to the side wo is on as Cycles' shader setup
+// turns it on back faces (here transmissive surfaces keep their orientation, which tells inside
+// from outside): the shading normal bent until the view's mirror direction clears the surface.
 Vec3 viewer_side_normal(const SurfacePoint& sp, const Vec3& wo) {
-  return dot(wo, sp.ng) < 0.0f ? -sp.ns : sp.ns;
+  const float side = dot(wo, sp.ng) < 0.0f ? -1.0f : 1.0f;
+  return ensure_valid_reflection(sp.ng * side, wo, sp.ns * side);
 }
 
 }  // namespace
@@ -197,8 +200,11 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     }
     // Reflection is judged against the shading normal, as Cycles' closures do: directions
     // between the flat triangle and the smooth surface are lit (the terminator offset then lets
-    // their shadow rays out). Transmissive surfaces keep the geometric decision.
-    BSDF bsdf(Frame::from_normal_tangent(sp.ns, sp.tangent), transmissive ? sp.ng : sp.ns);
+    // their shadow rays out). Transmissive surfaces keep the geometric decision. The closures'
+    // normal is Cycles' valid-reflection one, in sp.ns's orientation.
+    const float viewer_side = dot(wo, sp.ng) < 0.0f ? -1.0f : 1.0f;
+    const Vec3 closure_n = viewer_side_normal(sp, wo) * viewer_side;
+    BSDF bsdf(Frame::from_normal_tangent(closure_n, sp.tangent), transmissive ? sp.ng : closure_n);
     RGB emitted = mat.emission;
     if (mat.graph) {
       // A node material: run its program at this point, then build its closures in place

@@ -213,16 +213,13 @@ def test_terminator_pixels_match_cycles(geometry_offset, tmp_path):
     scene.collection.objects.link(sun_obj)
     ours = _render(scene, "BXDF_LAB", tmp_path / "bxdf_lab.exr")
     cycles = _render(scene, "CYCLES", tmp_path / "cycles.exr")
-    # Silhouette pixels are left out: there Cycles' diffuse closure is lit even when the view
-    # is below the smooth normal, a BSDF convention rather than the terminator's.
-    covered = cycles[..., 3] > 0.999
-    inner = covered.copy()
-    for dy, dx in ((0, 1), (0, -1), (1, 0), (-1, 0)):
-        inner &= np.roll(covered, (dy, dx), axis=(0, 1))
+    # Silhouette pixels included: there the view is below the smooth normal, and both bend
+    # the closure's normal as Cycles does (test_silhouette_pixels_are_lit_as_cycles).
+    covered = (cycles[..., 3] > 0.999) & (ours[..., 3] > 0.999)
     lit_ours, lit_cycles = ours[..., 0] > 1e-3, cycles[..., 0] > 1e-3
-    assert (lit_cycles & inner).sum() > 40
-    assert np.sum((lit_ours != lit_cycles) & inner) == 0
-    both = lit_ours & lit_cycles & inner
+    assert (lit_cycles & covered).sum() > 40
+    assert np.sum((lit_ours != lit_cycles) & covered) == 0
+    both = lit_ours & lit_cycles & covered
     np.testing.assert_allclose(ours[both], cycles[both], rtol=2e-2, atol=2e-3)
 
 
@@ -292,3 +289,29 @@ def test_shading_offset_dims_the_viewers_side_only_as_cycles(view, sun_side, tmp
     for ours, cycles in renders.values():
         np.testing.assert_allclose(ours[lit], cycles[lit], rtol=2e-3)
 
+
+def test_silhouette_pixels_are_lit_as_cycles(tmp_path):
+    # A coarse smooth sphere lit from the left, slightly from the front: on its silhouette the
+    # interpolated normal turns away from the camera while the facet still faces it. Cycles bends
+    # each closure's normal until the view's mirror direction clears the surface
+    # (ensure_valid_reflection), so those pixels are lit; so must ours be. Delta sun, one sample
+    # per pixel: exact in both.
+    scene = _scene(1, camera=(0, -5, 0), target=(0, 0, 0), lens=60.0)
+    scene.render.film_transparent = True  # alpha = coverage
+    _sphere(_diffuse("white"), segments=12, rings=6)
+    sun = bpy.data.lights.new("sun", "SUN")
+    sun.energy, sun.angle = 3.0, 0.0
+    sun_obj = bpy.data.objects.new("sun", sun)
+    sun_obj.rotation_mode = "QUATERNION"
+    sun_obj.rotation_quaternion = Vector((1.0, 0.3, -0.4)).to_track_quat("-Z", "Y")
+    scene.collection.objects.link(sun_obj)
+    ours = _render(scene, "BXDF_LAB", tmp_path / "bxdf_lab.exr")
+    cycles = _render(scene, "CYCLES", tmp_path / "cycles.exr")
+    covered = (cycles[..., 3] > 0.999) & (ours[..., 3] > 0.999)
+    assert np.array_equal(cycles[..., 3] > 0.5, ours[..., 3] > 0.5)
+    inner = covered.copy()
+    for dy, dx in ((0, 1), (0, -1), (1, 0), (-1, 0)):
+        inner &= np.roll(covered, (dy, dx), axis=(0, 1))
+    silhouette_lit = covered & ~inner & (cycles[..., 0] > 1e-3)
+    assert silhouette_lit.sum() >= 8
+    np.testing.assert_allclose(ours[covered][:, :3], cycles[covered][:, :3], rtol=2e-2, atol=2e-3)
