@@ -117,8 +117,12 @@ def _environment_image(environment, work_dir):
         return bpy.data.images.load(environment.path, check_existing=True)
     from . import imageio  # noqa: PLC0415 - OpenImageIO is needed only for a generated world
 
+    # Every engine's job of the scene writes the same file: each writes its own and renames it
+    # into place, so that no job reads another's half-written image.
     path = os.path.join(work_dir, f"z_gradient_{environment.a:g}_{environment.b:g}.exr")
-    imageio.write_exr(path, gradient_world.image(environment))
+    partial = f"{path}.{os.getpid()}.exr"
+    imageio.write_exr(partial, gradient_world.image(environment))
+    os.replace(partial, path)
     image = bpy.data.images.load(path)
     image.colorspace_settings.name = "Linear"
     return image
