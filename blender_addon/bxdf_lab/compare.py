@@ -177,21 +177,21 @@ def pov_pairing(material):
 
 def coverage(material):
     """[{"node", "type", "status": exact|approximate|unsupported, "why"}]: how each node of the
-    material's tree reaches BxDF Lab. A material rendered from its model translates no node: a
-    tree built by Set Up Cycles Material carries its set-up label, any other is not rendered by
-    BxDF Lab."""
+    material's tree reaches BxDF Lab. A material rendered from its model translates no node: its
+    tree is one entry (every node, one reason), labelled by Set Up Cycles Material when that built
+    it, else not rendered by BxDF Lab."""
     if material_source.source(material) == "NODES":
         return nodes.material_coverage(material)
     if material.node_tree is None:
         return []
     settings = material.bxdf_lab
+    tree = {"node": ", ".join(n.name for n in material.node_tree.nodes),
+            "type": ", ".join(n.bl_idname for n in material.node_tree.nodes)}
     if settings.cycles_label:
-        return [{"node": n.name, "type": n.bl_idname, "status": settings.cycles_label,
-                 "why": f"built from the panel's model by Set Up Cycles Material: {settings.cycles_mapping}"}
-                for n in material.node_tree.nodes]
-    return [{"node": n.name, "type": n.bl_idname, "status": "unsupported",
-             "why": f"not rendered by BxDF Lab: it renders the panel's model ({settings.model})"}
-            for n in material.node_tree.nodes]
+        return [dict(tree, status=settings.cycles_label,
+                     why=f"built from the panel's model by Set Up Cycles Material: {settings.cycles_mapping}")]
+    return [dict(tree, status="unsupported",
+                 why=f"not rendered by BxDF Lab: it renders the panel's model ({settings.model})")]
 
 
 def pairings(scene):
