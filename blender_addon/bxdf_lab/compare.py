@@ -88,10 +88,11 @@ def engine_settings(scene, engine_id, options):
 
 
 def apply_settings(pairs):
-    """Sets the triples; returns what restore_settings needs to undo them."""
+    """Sets the triples that differ (a set runs the property's update, e.g. Cycles' render-pass
+    refresh on use_denoising); returns what restore_settings needs to undo them."""
     saved = []
     for owner, attr, value in pairs:
-        if owner is not None and hasattr(owner, attr):
+        if owner is not None and hasattr(owner, attr) and getattr(owner, attr) != value:
             saved.append((owner, attr, getattr(owner, attr)))
             setattr(owner, attr, value)
     return saved
@@ -334,6 +335,9 @@ class CompareRun:
         self.options.folder = bpy.path.abspath(self.options.folder)
         os.makedirs(self.options.folder, exist_ok=True)
         self.pending = list(ENGINES)
+        # Every add-on the run needs is enabled now, before any render job: registering an
+        # add-on's classes and properties while a job's thread reads the scene is not safe.
+        self.enabled = {engine_id for engine_id in ENGINES if self.addons.need(engine_id)}
 
     def path(self, engine_id):
         return os.path.join(self.options.folder, f"{engine_id.lower()}.exr")
@@ -343,7 +347,7 @@ class CompareRun:
         (recorded in results)."""
         result = EngineResult(engine_id, path=self.path(engine_id))
         self.results.append(result)
-        if not self.addons.need(engine_id) or engine_id not in available_engines():
+        if engine_id not in self.enabled or engine_id not in available_engines():
             result.message = f"{ENGINE_NAMES[engine_id]} is not available (its add-on did not enable)"
             return False
         if os.path.exists(result.path):
