@@ -88,11 +88,10 @@ def engine_settings(scene, engine_id, options):
 
 
 def apply_settings(pairs):
-    """Sets the triples that differ (a set runs the property's update, e.g. Cycles' render-pass
-    refresh on use_denoising); returns what restore_settings needs to undo them."""
+    """Sets the triples; returns what restore_settings needs to undo them."""
     saved = []
     for owner, attr, value in pairs:
-        if owner is not None and hasattr(owner, attr) and getattr(owner, attr) != value:
+        if owner is not None and hasattr(owner, attr):
             saved.append((owner, attr, getattr(owner, attr)))
             setattr(owner, attr, value)
     return saved
