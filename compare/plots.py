@@ -92,7 +92,8 @@ def heatmap(diff, z, fail, z_crit, title, path):
     vmax = float(np.percentile(diff, 99.5)) or 1e-6
     im = axes[0].imshow(diff, cmap="inferno", vmin=0.0, vmax=vmax, interpolation="nearest")
     axes[0].set_title("|a − b| (channel mean)", fontsize=7)
-    fig.colorbar(im, ax=axes[0], fraction=0.046, pad=0.04).ax.tick_params(labelsize=6)
+    # "%.2g" ticks: the default's "1e−5" offset label sits on the panel's title
+    fig.colorbar(im, ax=axes[0], fraction=0.046, pad=0.04, format="%.2g").ax.tick_params(labelsize=6)
     im = axes[1].imshow(np.minimum(z, 2 * z_crit), cmap="viridis", vmin=0.0, vmax=2 * z_crit,
                         interpolation="nearest")
     if fail.any():

@@ -177,21 +177,21 @@ def pov_pairing(material):
 
 def coverage(material):
     """[{"node", "type", "status": exact|approximate|unsupported, "why"}]: how each node of the
-    material's tree reaches BxDF Lab. A material rendered from its model translates no node: a
-    tree built by Set Up Cycles Material carries its set-up label, any other is not rendered by
-    BxDF Lab."""
+    material's tree reaches BxDF Lab. A material rendered from its model translates no node: its
+    tree is one entry (every node, one reason), labelled by Set Up Cycles Material when that built
+    it, else not rendered by BxDF Lab."""
     if material_source.source(material) == "NODES":
         return nodes.material_coverage(material)
     if material.node_tree is None:
         return []
     settings = material.bxdf_lab
+    tree = {"node": ", ".join(n.name for n in material.node_tree.nodes),
+            "type": ", ".join(n.bl_idname for n in material.node_tree.nodes)}
     if settings.cycles_label:
-        return [{"node": n.name, "type": n.bl_idname, "status": settings.cycles_label,
-                 "why": f"built from the panel's model by Set Up Cycles Material: {settings.cycles_mapping}"}
-                for n in material.node_tree.nodes]
-    return [{"node": n.name, "type": n.bl_idname, "status": "unsupported",
-             "why": f"not rendered by BxDF Lab: it renders the panel's model ({settings.model})"}
-            for n in material.node_tree.nodes]
+        return [dict(tree, status=settings.cycles_label,
+                     why=f"built from the panel's model by Set Up Cycles Material: {settings.cycles_mapping}")]
+    return [dict(tree, status="unsupported",
+                 why=f"not rendered by BxDF Lab: it renders the panel's model ({settings.model})")]
 
 
 def pairings(scene):
@@ -334,6 +334,9 @@ class CompareRun:
         self.options.folder = bpy.path.abspath(self.options.folder)
         os.makedirs(self.options.folder, exist_ok=True)
         self.pending = list(ENGINES)
+        # Every add-on the run needs is enabled now, before any render job: registering an
+        # add-on's classes and properties while a job's thread reads the scene is not safe.
+        self.enabled = {engine_id for engine_id in ENGINES if self.addons.need(engine_id)}
 
     def path(self, engine_id):
         return os.path.join(self.options.folder, f"{engine_id.lower()}.exr")
@@ -343,7 +346,7 @@ class CompareRun:
         (recorded in results)."""
         result = EngineResult(engine_id, path=self.path(engine_id))
         self.results.append(result)
-        if not self.addons.need(engine_id) or engine_id not in available_engines():
+        if engine_id not in self.enabled or engine_id not in available_engines():
             result.message = f"{ENGINE_NAMES[engine_id]} is not available (its add-on did not enable)"
             return False
         if os.path.exists(result.path):

@@ -126,6 +126,10 @@ def showcase():
     world = bpy.context.scene.world
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.25, 0.27, 0.3, 1.0)
     bpy.context.scene.bxdf_lab_render.viewport_samples = 64
+    for material in (bpy.data.materials["Material"], gold, floor):  # labelled pairings in the report
+        with bpy.context.temp_override(material=material):
+            bpy.ops.bxdf_lab.set_up_cycles()
+            bpy.ops.bxdf_lab.set_up_povray()
     for obj in bpy.context.selected_objects:
         obj.select_set(False)
 
@@ -169,8 +173,10 @@ def compare_steps():
     view = area("VIEW_3D")
     view.type = "IMAGE_EDITOR"  # somewhere to show the result
     with bpy.context.temp_override(window=bpy.context.window, area=area("IMAGE_EDITOR")):
-        started = bpy.ops.bxdf_lab.compare_renders("EXEC_DEFAULT", directory=folder, size=48, samples=4)
-    result["compare"] = {"started": list(started)}
+        # The README's pictures at a readable size; the test at a quick one.
+        size, samples = (320, 32) if args.screenshots else (48, 4)
+        started = bpy.ops.bxdf_lab.compare_renders("EXEC_DEFAULT", directory=folder, size=size, samples=samples)
+    result["compare"] = {"started": list(started), "folder": folder}
 
     def slow_handler(*_):
         time.sleep(1.0)
