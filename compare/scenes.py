@@ -201,6 +201,20 @@ def sweep_principled_lobes():
         ])
 
 
+def sweep_principled_transmission():
+    """Transmission under direct light: the point light reaches the sphere's outside only, so the
+    glass part shows its reflection closure and the refraction closure only through sampling."""
+    return _principled_grid(
+        "sweep_principled_transmission",
+        "Cycles Principled rows: transmission 1 with IOR 1.1-2.5 (roughness 0.3); transmission "
+        "roughness 0-1 (roughness 0.2, IOR 1.45)",
+        [
+            [{"transmission": 1.0, "roughness": 0.3, "ior": ior} for ior in (1.1, 1.3, 1.45, 1.8, 2.5)],
+            [{"transmission": 1.0, "roughness": 0.2, "transmission_roughness": t}
+             for t in (0.0, 0.25, 0.5, 0.75, 1.0)],
+        ])
+
+
 def _cornell_walls():
     white = Material("cornell_white", "lambertian", {"reflectance": (0.73, 0.73, 0.73)})
     red = Material("cornell_red", "lambertian", {"reflectance": (0.63, 0.065, 0.05)})
@@ -247,7 +261,7 @@ SCENES = {f().name: f for f in (
     lit_cycles_glossy_beckmann, sun_sphere, furnace, sweep_glossy_roughness,
     sweep_oren_nayar_sigma, cornell, sweep_principled_metallic_roughness,
     sweep_principled_lobes, lit_cycles_glossy_ashikhmin_shirley, lit_cycles_velvet,
-    cycles_glass_room)}
+    cycles_glass_room, sweep_principled_transmission)}
 
 DEFAULT_SCENES = tuple(SCENES) + tuple(f().name for f in DEFAULT_NODE_SCENES)
 SCENES.update({f().name: f for f in NODE_SCENES})
