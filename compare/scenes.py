@@ -158,7 +158,7 @@ def sweep_oren_nayar_sigma():
         max_bounces=0, spp=16, resolution=(256, 80), tags=("sweep",))
 
 
-def _principled_grid(name, description, rows):
+def _principled_grid(name, description, rows, max_bounces=0, spp=16):
     """Rows (top to bottom) of five Principled spheres; each row is a list of parameter dicts."""
     spheres = []
     for j, row in enumerate(rows):
@@ -171,7 +171,7 @@ def _principled_grid(name, description, rows):
         name=name, description=description,
         camera=Camera(location=(0.0, -11.0, 0.0), look_at=(0.0, 0.0, 0.0), lens_mm=50.0),
         objects=tuple(spheres), lights=(PointLight(location=(2.0, -7.0, 4.0), intensity=120.0),),
-        max_bounces=0, spp=16, resolution=(200, 40 * len(rows) + 40), tags=("sweep",))
+        max_bounces=max_bounces, spp=spp, resolution=(200, 40 * len(rows) + 40), tags=("sweep",))
 
 
 def sweep_principled_metallic_roughness():
@@ -202,17 +202,19 @@ def sweep_principled_lobes():
 
 
 def sweep_principled_transmission():
-    """Transmission under direct light: the point light reaches the sphere's outside only, so the
-    glass part shows its reflection closure and the refraction closure only through sampling."""
+    """Transmission: the light reaches the camera through the spheres only by refracting twice,
+    once by next-event estimation through the rough refraction closure, so this scene needs
+    bounces (and has no analytic image)."""
     return _principled_grid(
         "sweep_principled_transmission",
         "Cycles Principled rows: transmission 1 with IOR 1.1-2.5 (roughness 0.3); transmission "
-        "roughness 0-1 (roughness 0.2, IOR 1.45)",
+        "roughness 0-1 (roughness 0.2, IOR 1.45); transmission 0-1 (roughness 0.4); 6 bounces",
         [
             [{"transmission": 1.0, "roughness": 0.3, "ior": ior} for ior in (1.1, 1.3, 1.45, 1.8, 2.5)],
             [{"transmission": 1.0, "roughness": 0.2, "transmission_roughness": t}
              for t in (0.0, 0.25, 0.5, 0.75, 1.0)],
-        ])
+            [{"transmission": t, "roughness": 0.4} for t in (0.0, 0.25, 0.5, 0.75, 1.0)],
+        ], max_bounces=6, spp=32)
 
 
 def _cornell_walls():
