@@ -69,6 +69,18 @@ def _frame(n):
     return t, np.cross(n, t)
 
 
+def _default_frame(q, n):
+    """Cycles' default tangent frame at object-space points q (the object's origin at the
+    sphere's centre): the tangent radial about the object's Z axis, (−q.y, q.x, 0), made
+    orthogonal to n, and the bitangent n × t; _frame's where that tangent vanishes (the poles)."""
+    radial = np.stack([-q[:, 1], q[:, 0], np.zeros(len(q))], axis=1)
+    t = radial - n * np.einsum("ij,ij->i", radial, n)[:, None]
+    length = np.linalg.norm(t, axis=1, keepdims=True)
+    fallback, _ = _frame(n)
+    t = np.where(length > 1e-9, t / np.maximum(length, 1e-30), fallback)
+    return t, np.cross(n, t)
+
+
 def _to_local(v, t, b, n):
     return np.stack([np.einsum("ij,ij->i", v, t), np.einsum("ij,ij->i", v, b),
                      np.einsum("ij,ij->i", v, n)], axis=1)
@@ -124,8 +136,9 @@ def render(spec: SceneSpec) -> AnalyticImage:
 def _shade_with_tolerance(spec, spheres, sphere, origin, dirs, t):
     model = make_model(sphere.material.model, sphere.material.params)
     p = origin + dirs * t[:, None]
-    n = (p - np.asarray(sphere.center, float)) / sphere.radius
-    value = _shade(spec, spheres, model, p, n, dirs)
+    center = np.asarray(sphere.center, float)
+    n = (p - center) / sphere.radius
+    value = _shade(spec, spheres, model, p, n, dirs, center)
     cos_v = np.clip(-np.einsum("ij,ij->i", dirs, n), 1e-6, 1.0)
     tan_v = np.minimum(np.sqrt(1.0 - cos_v ** 2) / cos_v, MAX_VIEW_TAN)
     eps = TESSELLATION_DELTA ** 2 / 8.0 * (1.0 + tan_v)
@@ -134,14 +147,15 @@ def _shade_with_tolerance(spec, spheres, sphere, origin, dirs, t):
     for direction in (tangent, -tangent, bitangent, -bitangent):
         tilted = n + eps[:, None] * direction
         tilted /= np.linalg.norm(tilted, axis=1, keepdims=True)
-        deviation = np.maximum(deviation, np.abs(_shade(spec, spheres, model, p, tilted, dirs)
-                                                 - value))
+        deviation = np.maximum(deviation, np.abs(
+            _shade(spec, spheres, model, p, tilted, dirs, center) - value))
     return value, deviation
 
 
-def _shade(spec, spheres, model, p, n, dirs):
-    """Direct light at points p with shading normals n seen along dirs."""
-    tangent, bitangent = _frame(n)
+def _shade(spec, spheres, model, p, n, dirs, center):
+    """Direct light at points p with shading normals n seen along dirs, on the sphere about
+    `center` (its tangent frame is Cycles' default one, which anisotropic models see)."""
+    tangent, bitangent = _default_frame(p - center, n)
     wo = _to_local(-dirs, tangent, bitangent, n)
     out = np.zeros((len(dirs), 3))
     for light in spec.lights:
