@@ -70,6 +70,18 @@ def _frame(n):
     return t, np.cross(n, t)
 
 
+def _default_frame(q, n):
+    """Cycles' default tangent frame at object-space points q (the object's origin at the
+    sphere's centre): the tangent radial about the object's Z axis, (−q.y, q.x, 0), made
+    orthogonal to n, and the bitangent n × t; _frame's where that tangent vanishes (the poles)."""
+    radial = np.stack([-q[:, 1], q[:, 0], np.zeros(len(q))], axis=1)
+    t = radial - n * np.einsum("ij,ij->i", radial, n)[:, None]
+    length = np.linalg.norm(t, axis=1, keepdims=True)
+    fallback, _ = _frame(n)
+    t = np.where(length > 1e-9, t / np.maximum(length, 1e-30), fallback)
+    return t, np.cross(n, t)
+
+
 def _to_local(v, t, b, n):
     return np.stack([np.einsum("ij,ij->i", v, t), np.einsum("ij,ij->i", v, b),
                      np.einsum("ij,ij->i", v, n)], axis=1)
@@ -145,22 +157,24 @@ def _normal_error(dirs, n):
 def _shade_with_tolerance(spec, spheres, sphere, origin, dirs, t):
     model = make_model(sphere.material.model, sphere.material.params)
     p = origin + dirs * t[:, None]
-    n = (p - np.asarray(sphere.center, float)) / sphere.radius
-    value = _shade(spec, spheres, model, p, n, dirs)
+    center = np.asarray(sphere.center, float)
+    n = (p - center) / sphere.radius
+    value = _shade(spec, spheres, model, p, n, dirs, center)
     eps = _normal_error(dirs, n)
     tangent, bitangent = _frame(n)
     deviation = np.zeros_like(value)
     for direction in (tangent, -tangent, bitangent, -bitangent):
         tilted = n + eps[:, None] * direction
         tilted /= np.linalg.norm(tilted, axis=1, keepdims=True)
-        deviation = np.maximum(deviation, np.abs(_shade(spec, spheres, model, p, tilted, dirs)
-                                                 - value))
+        deviation = np.maximum(deviation, np.abs(
+            _shade(spec, spheres, model, p, tilted, dirs, center) - value))
     return value, deviation
 
 
-def _shade(spec, spheres, model, p, n, dirs):
-    """Direct light at points p with shading normals n seen along dirs."""
-    tangent, bitangent = _frame(n)
+def _shade(spec, spheres, model, p, n, dirs, center):
+    """Direct light at points p with shading normals n seen along dirs, on the sphere about
+    `center` (its tangent frame is Cycles' default one, which anisotropic models see)."""
+    tangent, bitangent = _default_frame(p - center, n)
     wo = _to_local(-dirs, tangent, bitangent, n)
     out = np.zeros((len(dirs), 3))
     for light in spec.lights:

@@ -7,6 +7,7 @@ E/pi, which render_povray writes as three-digit sRGB, is represented exactly."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 from .light_scenes import LIGHT_SCENES
 from .node_scenes import DEFAULT_NODE_SCENES, NODE_SCENES
@@ -159,12 +160,13 @@ def sweep_oren_nayar_sigma():
         max_bounces=0, spp=16, resolution=(256, 80), tags=("sweep",))
 
 
-def _principled_grid(name, description, rows):
+def _principled_grid(name, description, rows, max_bounces=0, spp=16):
     """Rows (top to bottom) of five Principled spheres; each row is a list of parameter dicts."""
     spheres = []
     for j, row in enumerate(rows):
         for i, params in enumerate(row):
-            label = "_".join(f"{k}{v}" for k, v in sorted(params.items())).replace(".", "")
+            label = "_".join(f"{k}{v}" for k, v in sorted(params.items())
+                             if not isinstance(v, tuple)).replace(".", "")
             spheres.append(Sphere(f"sphere_{j}_{i}", (-2.0 + 1.0 * i, 0.0, 1.0 * (len(rows) - 1) / 2 - j),
                                   0.42, Material(f"principled_{j}_{i}_{label}"[:60], "cycles_principled",
                                                  {"base_color": (0.8, 0.45, 0.25), **params})))
@@ -172,7 +174,7 @@ def _principled_grid(name, description, rows):
         name=name, description=description,
         camera=Camera(location=(0.0, -11.0, 0.0), look_at=(0.0, 0.0, 0.0), lens_mm=50.0),
         objects=tuple(spheres), lights=(PointLight(location=(2.0, -7.0, 4.0), intensity=120.0),),
-        max_bounces=0, spp=16, resolution=(200, 40 * len(rows) + 40), tags=("sweep",))
+        max_bounces=max_bounces, spp=spp, resolution=(200, 40 * len(rows) + 40), tags=("sweep",))
 
 
 def sweep_principled_metallic_roughness():
@@ -184,11 +186,14 @@ def sweep_principled_metallic_roughness():
 
 
 def sweep_principled_lobes():
-    # Anisotropy, transmission and multiscatter rows are not here: see the README's findings.
+    # Multiscatter is compared in sweep_principled_multiscatter (a Cycles quirk); transmission
+    # with bounces in sweep_principled_transmission. Anisotropy uses Cycles' default tangent
+    # (radial about the sphere's Z axis), which BXDF_LAB and the analytic image reproduce.
     return _principled_grid(
         "sweep_principled_lobes",
         "Cycles Principled rows: specular and specular tint; sheen and sheen tint; clearcoat and "
-        "clearcoat roughness",
+        "clearcoat roughness; anisotropic and anisotropic rotation; transmission, IOR and "
+        "transmission roughness (direct light)",
         [
             [{"specular": 0.0}, {"specular": 0.5}, {"specular": 1.0},
              {"specular": 1.0, "specular_tint": 0.5}, {"specular": 1.0, "specular_tint": 1.0}],
@@ -199,7 +204,59 @@ def sweep_principled_lobes():
             [{"clearcoat": 0.5}, {"clearcoat": 1.0}, {"clearcoat": 1.0, "clearcoat_roughness": 0.2},
              {"clearcoat": 1.0, "clearcoat_roughness": 0.5},
              {"clearcoat": 1.0, "clearcoat_roughness": 0.5, "metallic": 1.0}],
+            [{"anisotropic": 0.5, "roughness": 0.3}, {"anisotropic": 0.9, "roughness": 0.4},
+             {"anisotropic": 0.9, "roughness": 0.4, "anisotropic_rotation": 0.125},
+             {"anisotropic": 0.9, "roughness": 0.4, "anisotropic_rotation": 0.25},
+             {"anisotropic": 0.7, "roughness": 0.5, "metallic": 1.0, "anisotropic_rotation": 0.4}],
+            [{"transmission": 0.5, "roughness": 0.1, "ior": 1.3},
+             {"transmission": 0.5, "roughness": 0.2, "ior": 1.8},
+             {"transmission": 0.5, "roughness": 0.5, "transmission_roughness": 0.5},
+             {"transmission": 0.25, "roughness": 0.3}, {"transmission": 0.75, "roughness": 0.3}],
         ])
+
+
+def sweep_principled_transmission():
+    """Transmission: the light reaches the camera through the spheres only by refracting twice,
+    once by next-event estimation through the rough refraction closure, so this scene needs
+    bounces (and has no analytic image)."""
+    return _principled_grid(
+        "sweep_principled_transmission",
+        "Cycles Principled rows: transmission 1 with IOR 1.1-2.5 (roughness 0.3); transmission "
+        "roughness 0-1 (roughness 0.2, IOR 1.45); transmission 0-1 (roughness 0.4); 6 bounces",
+        [
+            [{"transmission": 1.0, "roughness": 0.3, "ior": ior} for ior in (1.1, 1.3, 1.45, 1.8, 2.5)],
+            [{"transmission": 1.0, "roughness": 0.2, "transmission_roughness": t}
+             for t in (0.0, 0.25, 0.5, 0.75, 1.0)],
+            [{"transmission": t, "roughness": 0.4} for t in (0.0, 0.25, 0.5, 0.75, 1.0)],
+        ], max_bounces=6, spp=32)
+
+
+def sweep_principled_multiscatter():
+    """Single-scatter GGX (top) against multiscatter GGX (bottom) in a white world (no lights):
+    the light is found by sampling, where Cycles' multiscatter sampling walk and its eval walk
+    disagree (pairings.cycles_quirks); the top row shows the rest of the scene agreeing."""
+    columns = [{"metallic": 1.0, "base_color": (0.95, 0.95, 0.95), "roughness": r}
+               for r in (0.3, 0.5, 0.7, 0.9)] + [{"roughness": 0.6}]
+    return replace(_principled_grid(
+        "sweep_principled_multiscatter",
+        "Cycles Principled in a white world: GGX (top row) against Multiscatter GGX (bottom "
+        "row); white metal at roughness 0.3-0.9 and a dielectric at roughness 0.6; one bounce",
+        [columns, [{**c, "distribution": "multi_ggx"} for c in columns]], max_bounces=1, spp=32),
+        lights=(), world_color=(1.0, 1.0, 1.0))
+
+
+def principled_clearcoat_world():
+    """Clearcoat spheres in a white world (no lights): the light is found by sampling, where
+    Cycles' clearcoat reports GTR1's pdf for GGX samples (pairings.cycles_quirks). The top row
+    has no clearcoat and shows what the rest of the material does."""
+    base = {"base_color": (0.05, 0.05, 0.05), "roughness": 0.6}
+    rows = [[{**base, "specular": s} for s in (0.0, 0.25, 0.5, 0.75, 1.0)],
+            [{**base, "clearcoat": 1.0, "clearcoat_roughness": r} for r in (0.0, 0.1, 0.3, 0.6, 1.0)]]
+    return replace(_principled_grid(
+        "principled_clearcoat_world",
+        "Cycles Principled in a white world, dark base: specular 0-1 (top), clearcoat 1 with "
+        "clearcoat roughness 0-1 (bottom); one bounce", rows, max_bounces=1, spp=64),
+        lights=(), world_color=(1.0, 1.0, 1.0))
 
 
 def _cornell_walls():
@@ -248,7 +305,8 @@ SCENES = {f().name: f for f in (
     lit_cycles_glossy_beckmann, sun_sphere, furnace, sweep_glossy_roughness,
     sweep_oren_nayar_sigma, cornell, sweep_principled_metallic_roughness,
     sweep_principled_lobes, lit_cycles_glossy_ashikhmin_shirley, lit_cycles_velvet,
-    cycles_glass_room)}
+    cycles_glass_room, sweep_principled_transmission, sweep_principled_multiscatter,
+    principled_clearcoat_world)}
 SCENES.update({f().name: f for f in LIGHT_SCENES})
 
 DEFAULT_SCENES = tuple(SCENES) + tuple(f().name for f in DEFAULT_NODE_SCENES)

@@ -195,6 +195,15 @@ def mapping_for(name, params, model):
                        f"Cycles' own {params['distribution']}: roughness {params['roughness']:g}, "
                        f"anisotropy {anisotropy:g}", inputs,
                        {"distribution": params["distribution"].upper()})
+    if name == "cycles_refraction" and params["distribution"] == "multi_ggx":
+        return Mapping("ShaderNodeBsdfRefraction", APPROXIMATE,
+                       f"multiscatter refraction (the multiscatter Glass walk's transmitted part, "
+                       f"Fresnel included) → Refraction BSDF, GGX, roughness "
+                       f"{float(params['roughness']):g}, IOR {float(params['ior']):g}: Blender 3.4's "
+                       "Refraction node has no multiscatter GGX; it scatters once and has no "
+                       "Fresnel loss", {"Color": _rgba(params["color"]),
+                                        "Roughness": float(params["roughness"]),
+                                        "IOR": float(params["ior"])}, {"distribution": "GGX"})
     if name in _CYCLES_NODES:
         node, sockets = _CYCLES_NODES[name]
         inputs = {socket: (_rgba(params[key]) if socket == "Color" else float(params[key]))

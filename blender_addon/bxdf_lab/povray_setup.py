@@ -121,6 +121,8 @@ def _finish_for(name, params, model):
                 "POV has no Oren–Nayar")
     if name == "cycles_principled":
         return _principled_finish(params)
+    if name in _CYCLES_NODE_FINISHES:
+        return _CYCLES_NODE_FINISHES[name](params, model)
     albedo = tuple(float(c) for c in np.asarray(model.rho_hh(4096)).reshape(3))
     return (albedo, 1.0, None, None, APPROXIMATE,
             f"{name} → Lambert with the hemispherical albedo ({albedo[0]:.3f}, {albedo[1]:.3f}, "
@@ -142,12 +144,86 @@ def _principled_finish(params):
     f0 = 0.08 * float(params["specular"]) * (1.0 - metallic) + metallic * float(base.max())
     strength = f0 * (exponent + 2.0) / 8.0
     mirror = tuple(metallic * base) if metallic > 0.0 and params["roughness"] < 0.1 else None
-    return (tuple(base * diffuse_weight), 1.0 if diffuse_weight > 0.0 else 0.0,
-            {"exponent": exponent, "strength": strength}, mirror, APPROXIMATE,
+    # With transmission the pigment is the base colour, which POV's filter passes in proportion
+    # t(1 − metallic) and whose diffuse POV scales by 1 − t(1 − metallic): D undoes that scale.
+    filtered = transmission * (1.0 - metallic)
+    if filtered > 0.0:
+        pigment, diffuse = tuple(base), diffuse_weight / (1.0 - filtered) if filtered < 1.0 else 0.0
+        transmission_text = (f", filter transparency {filtered:.3g} of the base colour at ior "
+                             f"{float(params['ior']):g}; POV has no sheen, clearcoat, rough "
+                             "transmission or Fresnel")
+    else:
+        pigment, diffuse = tuple(base * diffuse_weight), 1.0 if diffuse_weight > 0.0 else 0.0
+        transmission_text = "; POV has no sheen, clearcoat, transmission or Fresnel"
+    return (pigment, diffuse, {"exponent": exponent, "strength": strength}, mirror, APPROXIMATE,
             f"Principled → Lambert × (1 − metallic)(1 − transmission) = {diffuse_weight:.3g}, "
             f"Blinn highlight exponent {exponent:.4g} with F0 {f0:.3g}"
-            + ("" if mirror is None else ", a metallic mirror")
-            + "; POV has no sheen, clearcoat, transmission or Fresnel")
+            + ("" if mirror is None else ", a metallic mirror") + transmission_text)
+
+
+def _glass_finish(params, model):
+    color = tuple(params["color"])
+    return (color, 0.0, None, color, APPROXIMATE,
+            f"Cycles' Glass → POV glass: filter transparency of the colour, interior ior "
+            f"{float(params['ior']):g}, Fresnel mirror (reflection {{fresnel}}) of the colour, "
+            "conserve_energy; POV refracts and reflects sharply (roughness "
+            f"{float(params['roughness']):g} ignored)")
+
+
+def _refraction_finish(params, model):
+    color = tuple(params["color"])
+    return (color, 0.0, None, None, APPROXIMATE,
+            f"Cycles' Refraction → POV filter transparency of the colour with interior ior "
+            f"{float(params['ior']):g} and no reflection (the node has no Fresnel); POV refracts "
+            f"sharply (roughness {float(params['roughness']):g} ignored)")
+
+
+def _translucent_finish(params, model):
+    return (tuple(params["color"]), 0.0, None, None, APPROXIMATE,
+            "Cycles' Translucent (colour/π to the far side) → POV back-side diffuse "
+            "(diffuse 0, 1: POV's diffuse stands for R/π); POV lights the back only where a "
+            "light is behind the surface and unshadowed, so closed objects stay darker")
+
+
+def _transparent_finish(params, model):
+    return (tuple(params["color"]), 0.0, None, None, APPROXIMATE,
+            "Cycles' Transparent → POV filter transparency of the colour with ior 1 (a straight "
+            "pass-through); a surface seen and lit through it comes out × colour in POV, "
+            "× colour² in Cycles (its transparent shadows filter the light too)")
+
+
+def _velvet_finish(params, model):
+    albedo = tuple(float(c) for c in np.asarray(model.rho_hh(4096)).reshape(3))
+    return (albedo, 1.0, None, None, APPROXIMATE,
+            f"Cycles' Velvet → Lambert with its hemispherical albedo ({albedo[0]:.3f}, "
+            f"{albedo[1]:.3f}, {albedo[2]:.3f}): POV has no grazing-angle sheen lobe (its "
+            "Oren–Nayar brilliance only flattens the falloff from 0.9 up)")
+
+
+_CYCLES_NODE_FINISHES = {
+    "cycles_glass": _glass_finish,
+    "cycles_refraction": _refraction_finish,
+    "cycles_translucent": _translucent_finish,
+    "cycles_transparent": _transparent_finish,
+    "cycles_velvet": _velvet_finish,
+}
+
+
+def _transparency_for(name, params):
+    """POV transparency of a material: (filter amount, ior, back-side diffuse, Fresnel mirror)
+    or None. POV scales the pigment's diffuse by 1 − filter and passes filter × pigment."""
+    if name == "cycles_glass":
+        return 1.0, float(params["ior"]), 0.0, True
+    if name == "cycles_refraction":
+        return 1.0, float(params["ior"]), 0.0, False
+    if name == "cycles_transparent":
+        return 1.0, 1.0, 0.0, False
+    if name == "cycles_translucent":
+        return 0.0, 1.0, 1.0, False
+    if name == "cycles_principled":
+        amount = float(params["transmission"]) * (1.0 - float(params["metallic"]))
+        return (amount, float(params["ior"]), 0.0, False) if amount > 0.0 else None
+    return None
 
 
 def hardness_for_exponent(exponent):
@@ -156,6 +232,25 @@ def hardness_for_exponent(exponent):
     roughness = 1.0 / max(exponent, 1e-6)
     h = 1.0 + 510.0 * (1.0 - (roughness - 1.0 / 511.0) / 0.1)
     return int(round(min(max(h, 1.0), 511.0)))
+
+
+def _set_transparency(material, transparency):
+    pov = material.pov
+    pov.translucency = 0.0
+    pov.mirror_use_IOR = False
+    pov.use_transparency = transparency is not None and transparency[0] > 0.0
+    if transparency is None:
+        return
+    amount, ior, back_diffuse, fresnel_mirror = transparency
+    pov.translucency = back_diffuse
+    if amount > 0.0:
+        # render_povray writes filter = f·(1 − alpha) and transmit = (1 − alpha) − filter.
+        pov.transparency_method = "RAYTRACE"
+        pov.alpha = 1.0 - amount
+        material.pov_raytrace_transparency.filter = 1.0
+        material.pov_raytrace_transparency.ior = ior
+    pov.mirror_use_IOR = fresnel_mirror
+    pov.conserve_energy = fresnel_mirror
 
 
 def set_up(material, scene=None):
@@ -186,7 +281,9 @@ def set_up(material, scene=None):
     material.pov_raytrace_mirror.use = mirror is not None
     if mirror is not None:
         material.pov_raytrace_mirror.reflect_factor = 1.0
+        material.pov_raytrace_mirror.fresnel_factor = 1.0  # render_povray's "exponent"
         pov.mirror_color = tuple(float(c) for c in mirror)
+    _set_transparency(material, _transparency_for(name, dict(model.params)))
     notes = [text]
     if scene is not None:
         scene.pov.radio_enable = False

@@ -43,7 +43,7 @@ Vec3 viewer_side_normal(const SurfacePoint& sp, const Vec3& wo) {
 }  // namespace
 
 PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
-    : scene_(scene), settings_(settings) {
+    : scene_(scene), settings_(settings), transparent_shadows_(scene) {
   if (!scene.committed()) throw ParameterError("PathTracer: the scene is not committed");
   if (settings.max_bounces < 0)
     throw ParameterError("max_bounces " + std::to_string(settings.max_bounces) +
@@ -99,7 +99,9 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
       tmax = std::max(0.0f, dist * (1.0f - 1e-4f) - 2.0f * offset_scale(sp.p));
     }
     ++stats.shadow_rays;
-    if (scene_.occluded(origin, dir, tmax)) return RGB(0.0f);
+    const RGB visible = transparent_shadows_.throughput(origin, dir, tmax);
+    if (visible.is_black()) return RGB(0.0f);
+    f *= visible;
   }
 
   const float light_pdf = ls.pdf * select;

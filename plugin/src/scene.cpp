@@ -426,7 +426,15 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
   } else {
     sp.uv = Point2(hit.b1, hit.b2);
   }
-  if (!have_tangent) sp.tangent = Vec3(-sp.p.y, sp.p.x, 0.0f);  // radial about Z, as Cycles
+  if (!have_tangent) {
+    // Cycles' default tangent (a radial Tangent node about the object's Z axis): from the
+    // generated coordinates, taken to world space as a normal is (svm_node_tangent).
+    const Vec3 g = generated(hit, sp.p);
+    const Vec3 t(-(g.y - 0.5f), g.x - 0.5f, 0.0f);
+    const std::array<float, 12>& w = m.world_to_object;
+    sp.tangent = Vec3(w[0] * t.x + w[4] * t.y + w[8] * t.z, w[1] * t.x + w[5] * t.y + w[9] * t.z,
+                      w[2] * t.x + w[6] * t.y + w[10] * t.z);
+  }
   sp.material = m.material_indices.empty() ? m.material : m.material_indices[hit.triangle];
   return sp;
 }

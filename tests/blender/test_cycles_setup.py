@@ -202,3 +202,16 @@ def test_cycles_node_models_map_onto_their_node_exactly(model_name, params, node
         assert node.inputs[socket].default_value == pytest.approx(value)
     if "color" in params:
         assert tuple(node.inputs["Color"].default_value) == pytest.approx((*params["color"], 1.0))
+
+
+def test_multiscatter_refraction_maps_onto_the_refraction_node_approximately(material):
+    """Blender 3.4's Refraction node has no Multiscatter GGX: the closest is its GGX form."""
+    api.assign(material, "cycles_refraction", color=(0.9, 0.8, 0.7), distribution="multi_ggx",
+               roughness=0.5, ior=1.33)
+    _set_up(material)
+    assert material.bxdf_lab.cycles_label == "approximate"
+    assert "no multiscatter" in material.bxdf_lab.cycles_mapping
+    node = material.node_tree.nodes["Material Output"].inputs["Surface"].links[0].from_node
+    assert (node.type, node.distribution) == ("BSDF_REFRACTION", "GGX")
+    assert node.inputs["Roughness"].default_value == pytest.approx(0.5)
+    assert node.inputs["IOR"].default_value == pytest.approx(1.33)

@@ -99,3 +99,27 @@ def test_black_background_does_not_dilute_a_wrong_highlight():
     figures = metrics.compare(a, b)
     assert figures["signal_pixels"] == 16
     assert figures["z_fail_fraction"] == 1.0 and not metrics.passes(figures)
+
+
+def test_measured_cycles_quirks_make_their_pairings_approximate():
+    multi = scenes.get("sweep_principled_multiscatter")
+    assert pairings.label(multi, "BXDF_LAB", "CYCLES") == "approximate"
+    assert pairings.label(multi, "BXDF_LAB", "ANALYTIC") == "exact"
+    reasons = pairings.approximations(multi, "BXDF_LAB", "CYCLES")
+    assert len(reasons) == 5 and all("multiscatter" in r for r in reasons)
+    # The clearcoat's wrong pdf only matters where light is found by sampling: not under a
+    # point light with direct light only, but in a lit world.
+    assert pairings.label(scenes.get("sweep_principled_lobes"), "BXDF_LAB", "CYCLES") == "exact"
+    world = scenes.get("principled_clearcoat_world")
+    assert pairings.label(world, "BXDF_LAB", "CYCLES") == "approximate"
+    assert any("GTR1" in r for r in pairings.approximations(world, "BXDF_LAB", "CYCLES"))
+
+
+def test_the_analytic_tangent_is_cycles_default_radial_one():
+    """Cycles' default tangent turns about the object's Z axis: (−y, x, 0) made orthogonal to n."""
+    q = np.array([[0.6, 0.0, 0.8], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]])
+    t, b = analytic._default_frame(q, q)
+    np.testing.assert_allclose(t[0], [0.0, 1.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(t[1], [1.0, 0.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(np.einsum("ij,ij->i", t, q), 0.0, atol=1e-12)  # the pole too
+    np.testing.assert_allclose(b, np.cross(q, t), atol=1e-12)

@@ -197,6 +197,13 @@ std::map<std::string, std::vector<GridEntry>> build_grid() {
   // Cycles' rough refraction (weight 1, no Fresnel) gains energy: without a facet side check
   // its f is not zero for pairs no facet refracts into, which adds up to 0.7 at grazing wo
   // (measured maxima at θo = 89°: 1.717 for GGX α 0.25, 1.843 for Beckmann α 0.36).
+  // The glass walk's transmitted part: the glass's walk and its heavy tail.
+  GridEntry multi_refraction = entry("multi_ggx", params({{"distribution", "multi_ggx"},
+                                                          {"roughness", 0.6}, {"ior", 1.33}}));
+  multi_refraction.stochastic_f = true;
+  multi_refraction.furnace_unchecked = multi_glass.furnace_unchecked;
+  multi_refraction.not_reciprocal = "the multiscatter glass walk is not reciprocal for "
+                                    "transmission (as cycles_glass's multi_ggx)";
   g["cycles_refraction"] = {
       entry("ggx", params({{"distribution", "ggx"}, {"roughness", 0.5}, {"ior", 1.5}}), 1.7171),
       entry("beckmann", params({{"distribution", "beckmann"}, {"roughness", 0.6},
@@ -205,6 +212,7 @@ std::map<std::string, std::vector<GridEntry>> build_grid() {
       entry("sharp", params({{"distribution", "sharp"}, {"ior", 1.33}})),
       entry("index_one_passes_through", params({{"distribution", "ggx"}, {"roughness", 0.5},
                                                 {"ior", 1.0}})),
+      multi_refraction,
   };
   g["cycles_translucent"] = {
       entry("default", ParamSet()),

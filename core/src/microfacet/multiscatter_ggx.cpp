@@ -656,5 +656,51 @@ float MultiscatterGGXGlass::density(Vec3 wo, Vec3 wi) const {
   return a * single + (1.0f - a) * multi;
 }
 
+MultiscatterGGXRefraction::MultiscatterGGXRefraction(const MultiscatterSetup& setup)
+    : glass_(setup),
+      ggx_(glass_.setup().alpha_x, glass_.setup().alpha_x),
+      single_probability_(cycles_ggx_albedo(glass_.setup().alpha_x)) {}
+
+RGB MultiscatterGGXRefraction::eval(Vec3 wo, Vec3 wi) const {
+  if (!(wo.z * wi.z < 0.0f)) return RGB(0.0f);
+  return glass_.eval(wo, wi);
+}
+
+DirectionSample MultiscatterGGXRefraction::sample_direction(Vec3 wo, Point2 u) const {
+  DirectionSample d;
+  GlassSide s;
+  if (!glass_side(wo, Vec3(0.0f, 0.0f, 1.0f), glass_.setup().eta, &s)) return d;
+  const float a = single_probability_;
+  Vec3 wi;
+  if (u.x < a) {
+    const Vec3 wh = ggx_.sample_wh(s.wo, Point2(rescale(u.x, 0.0f, a), u.y));
+    if (!(dot(s.wo, wh) > 0.0f)) return d;
+    if (!refract(s.wo, wh, 1.0f / s.eta, &wi) || !(wi.z < 0.0f)) return d;
+  } else {
+    wi = sample_cosine_hemisphere(Point2(rescale(u.x, a, 1.0f - a), u.y));
+    wi.z = -wi.z;
+  }
+  if (wo.z < 0.0f) wi.z = -wi.z;
+  if (!snap_to_unit(wi) || wi.z == 0.0f) return d;
+  d.wi = wi;
+  d.flags = kTransmission | kGlossy;
+  d.ok = true;
+  return d;
+}
+
+float MultiscatterGGXRefraction::density(Vec3 wo, Vec3 wi) const {
+  GlassSide s;
+  if (!glass_side(wo, wi, glass_.setup().eta, &s) || !(s.wi.z < 0.0f)) return 0.0f;
+  float single = 0.0f;
+  Vec3 wh;
+  if (refraction_half(s, &wh)) {
+    const float wo_h = dot(s.wo, wh), wi_h = dot(s.wi, wh);
+    const float denom = wo_h + s.eta * wi_h;
+    single = ggx_.pdf_wh(s.wo, wh) * s.eta * s.eta * std::fabs(wi_h) / (denom * denom);
+  }
+  const float a = single_probability_;
+  return a * single + (1.0f - a) * -s.wi.z * kInvPi;
+}
+
 }  // namespace microfacet
 }  // namespace bxdf

@@ -39,6 +39,9 @@ auto build_cycles_dielectric(CyclesDielectricNode node, const RGB& color,
     microfacet::MultiscatterSetup setup;
     setup.alpha_x = setup.alpha_y = in.alpha;
     setup.eta = in.ior;
+    if (node == CyclesDielectricNode::kRefraction)
+      return emit(Type<CyclesMultiscatterRefraction>{}, uint32_t(kTransmission | kGlossy), color,
+                  setup);
     return emit(Type<CyclesMultiscatterGlass>{}, uint32_t(kReflection | kTransmission | kGlossy),
                 color, setup);
   }
@@ -73,9 +76,9 @@ void set_cycles_dielectric_place(ModelInfo& m, CyclesDielectricNode node) {
                                      return place_from(arena, type, args...);
                                    });
   };
-  // Every class the builder can emit (the Refraction node never picks multi_ggx; the bound
-  // stays an upper bound).
+  // Every class the builder can emit (an upper bound for either node).
   m.place_size = std::max({sizeof(CyclesSharpDielectric), sizeof(CyclesMultiscatterGlass),
+                           sizeof(CyclesMultiscatterRefraction),
                            sizeof(CyclesRoughDielectric<microfacet::Beckmann>),
                            sizeof(CyclesRoughDielectric<microfacet::GGX>)});
 }

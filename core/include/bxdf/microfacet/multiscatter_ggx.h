@@ -124,5 +124,28 @@ class MultiscatterGGXGlass {
   float single_probability_;
 };
 
+// The glass walk's transmitted part alone: Cycles' multiscatter glass (microfacet_multi_ggx_
+// glass) restricted to transmission, which is what cycles_refraction's multi_ggx means (Blender
+// 3.4's Refraction node has no multiscatter option and Cycles no such closure). f is the glass
+// eval where wi lies on the other side of the surface from wo and 0 on wo's side: the light the
+// walk reflects back is lost, with the Fresnel term at every facet as in the glass. Sampling:
+// with probability a (Cycles' mf_ggx_albedo fit) a GGX visible normal refracts wo (nothing
+// under total internal reflection), else a cosine direction on the transmitted side.
+class MultiscatterGGXRefraction {
+ public:
+  explicit MultiscatterGGXRefraction(const MultiscatterSetup& setup);
+
+  RGB eval(Vec3 wo, Vec3 wi) const;
+  DirectionSample sample_direction(Vec3 wo, Point2 u) const;
+  float density(Vec3 wo, Vec3 wi) const;
+
+  const MultiscatterSetup& setup() const { return glass_.setup(); }
+
+ private:
+  MultiscatterGGXGlass glass_;
+  GGX ggx_;
+  float single_probability_;
+};
+
 }  // namespace microfacet
 }  // namespace bxdf

@@ -30,8 +30,10 @@ class CyclesMultiscatter final : public BxDFImpl<CyclesMultiscatter<Lobe>> {
   Lobe lobe_;
 };
 
-// The Glossy node's (anisotropic) and the Glass node's (isotropic, eta = ior) forms.
+// The Glossy node's (anisotropic) and the Glass node's (isotropic, eta = ior) forms, and
+// cycles_refraction's multi_ggx: the glass walk's transmitted part (no Cycles node).
 using CyclesMultiscatterGlossy = CyclesMultiscatter<microfacet::MultiscatterGGXReflection>;
 using CyclesMultiscatterGlass = CyclesMultiscatter<microfacet::MultiscatterGGXGlass>;
+using CyclesMultiscatterRefraction = CyclesMultiscatter<microfacet::MultiscatterGGXRefraction>;
 
 }  // namespace bxdf

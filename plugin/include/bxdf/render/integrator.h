@@ -13,6 +13,7 @@
 
 #include "bxdf/render/ray.h"
 #include "bxdf/render/scene.h"
+#include "bxdf/render/transparent_shadows.h"
 #include "bxdf/rng.h"
 
 namespace bxdf::render {
@@ -59,6 +60,7 @@ class PathTracer {
 
   const Scene& scene_;
   IntegratorSettings settings_;
+  TransparentShadows transparent_shadows_;  // shadow rays through Transparent BSDFs
 };
 
 }  // namespace bxdf::render
