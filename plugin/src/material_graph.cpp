@@ -1,5 +1,8 @@
 #include "bxdf/render/material_graph.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "bxdf/render/graph_ops.h"
 #include "bxdf/render/scene.h"
 
@@ -23,16 +26,37 @@ Vec3 read_input(const GraphInput& in, const Vec3* registers) {
 
 void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
   const Scene& scene = *ctx.scene;
+  // The surface each node reads: the hit, or the bump offsets p + dpdx, p + dpdy (with the
+  // hit's barycentrics moved along, so that attributes follow, as Cycles' bump_dx nodes do).
+  const Hit* hits[3] = {ctx.hit, ctx.hit, ctx.hit};
+  Vec3 points[3] = {ctx.p, ctx.p, ctx.p};
+  Hit offset_hits[2];
+  Vec3 dpdx, dpdy;
+  if (reads_offsets) {
+    Vec3 a, b;
+    coordinate_system(ctx.ng, &a, &b);
+    const float scale = std::max({1.0f, std::fabs(ctx.p.x), std::fabs(ctx.p.y), std::fabs(ctx.p.z)});
+    dpdx = a * (kBumpOffset * scale);
+    dpdy = b * (kBumpOffset * scale);
+    offset_hits[0] = scene.offset_hit(*ctx.hit, dpdx);
+    offset_hits[1] = scene.offset_hit(*ctx.hit, dpdy);
+    hits[1] = &offset_hits[0];
+    hits[2] = &offset_hits[1];
+    points[1] = ctx.p + dpdx;
+    points[2] = ctx.p + dpdy;
+  }
   for (const GraphNode& node : nodes) {
     auto in = [&](int i) { return read_input(node.in[size_t(i)], r); };
     auto in_float = [&](int i) { return read_float(node.in[size_t(i)], r); };
     Vec3* out = r + node.out;
+    const Hit& hit = *hits[node.offset];
+    const Vec3& p = points[node.offset];
     switch (node.op) {
       case GraphOp::Const: out[0] = in(0); break;
-      case GraphOp::UV: out[0] = scene.uv(*ctx.hit, node.index); break;
-      case GraphOp::Generated: out[0] = scene.generated(*ctx.hit, ctx.p); break;
-      case GraphOp::Object: out[0] = scene.object_position(*ctx.hit, ctx.p); break;
-      case GraphOp::Position: out[0] = ctx.p; break;
+      case GraphOp::UV: out[0] = scene.uv(hit, node.index); break;
+      case GraphOp::Generated: out[0] = scene.generated(hit, p); break;
+      case GraphOp::Object: out[0] = scene.object_position(hit, p); break;
+      case GraphOp::Position: out[0] = p; break;
       case GraphOp::Normal: out[0] = ctx.n; break;
       case GraphOp::Incoming: out[0] = ctx.incoming; break;
       case GraphOp::Image: {
@@ -92,12 +116,29 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
       case GraphOp::NormalMap: {
         Vec3 tangent;
         float sign = 1.0f;
-        if (!scene.tangent(*ctx.hit, node.index, &tangent, &sign)) {
+        if (!scene.tangent(hit, node.index, &tangent, &sign)) {
           out[0] = ctx.n;  // Cycles: no tangent attribute, unperturbed normal
           break;
         }
-        out[0] = normal_map_tangent(in(1), in_float(0), tangent, sign,
-                                    scene.smooth_normal(*ctx.hit), ctx.n, ctx.backfacing);
+        // Cycles makes every closure normal a valid reflection; done here once per map.
+        out[0] = ensure_valid_reflection(
+            ctx.ng, ctx.incoming,
+            normal_map_tangent(in(1), in_float(0), tangent, sign, scene.smooth_normal(hit), ctx.n,
+                               ctx.backfacing));
+        break;
+      }
+      case GraphOp::Bump: {
+        BumpInputs b;
+        b.strength = in_float(0);
+        b.distance = in_float(1);
+        b.height = in_float(2);
+        b.normal = node.in[3].reg < 0 ? ctx.n : in(3);
+        b.height_x = in_float(4);
+        b.height_y = in_float(5);
+        b.dpdx = dpdx;
+        b.dpdy = dpdy;
+        b.invert = node.flag;
+        out[0] = bump_normal(b, ctx.ng, ctx.incoming);
         break;
       }
     }
@@ -143,7 +184,7 @@ void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
         if (frame_reg >= 0) frame = Frame::from_normal_tangent(n, tangent);
       }
       if (frame_reg == c.normal_reg) {
-        bsdf.add(model, weight, &frame);
+        bsdf.add(model, weight, &frame, c.diffuse_closure);
         continue;
       }
     }

@@ -100,6 +100,17 @@ void Scene::add_graph_attributes(const MeshView& m, const std::string& who, Stor
     if (m.tangents && m.tangents[k]) {
       require_finite(m.tangents[k], corners, 4, who + ": tangents[" + std::to_string(k) + "]");
       tangents.assign(m.tangents[k], m.tangents[k] + 4 * corners);
+      // Object-space tangents go to world space through the object matrix (a direction, not a
+      // normal: under non-uniform scale it stays in the surface), as Cycles transforms them.
+      if (m.object_to_world)
+        for (size_t c = 0; c < corners; ++c) {
+          float* v = &tangents[4 * c];
+          const float* mt = m.object_to_world;
+          const float x = v[0], y = v[1], z = v[2];
+          v[0] = mt[0] * x + mt[1] * y + mt[2] * z;
+          v[1] = mt[4] * x + mt[5] * y + mt[6] * z;
+          v[2] = mt[8] * x + mt[9] * y + mt[10] * z;
+        }
     }
     s.tangents.push_back(std::move(tangents));
   }
@@ -481,6 +492,23 @@ Vec3 Scene::generated(const Hit& hit, const Vec3& p) const {
   const Vec3 d = object_position(hit, p) - m.texspace_location;
   return {d.x * m.texspace_inv_size.x * 0.5f + 0.5f, d.y * m.texspace_inv_size.y * 0.5f + 0.5f,
           d.z * m.texspace_inv_size.z * 0.5f + 0.5f};
+}
+
+Hit Scene::offset_hit(const Hit& hit, const Vec3& dp) const {
+  const StoredMesh& m = meshes_[hit.mesh];
+  const uint32_t* t = &m.indices[3 * size_t(hit.triangle)];
+  const Vec3 p0 = load3(m.positions, t[0]);
+  const Vec3 e1 = load3(m.positions, t[1]) - p0, e2 = load3(m.positions, t[2]) - p0;
+  // dp = e1·d1 + e2·d2 in the least-squares sense (Cramer's rule on the normal equations).
+  const float a = dot(e1, e1), b = dot(e1, e2), c = dot(e2, e2);
+  const float r1 = dot(dp, e1), r2 = dot(dp, e2);
+  const float det = a * c - b * b;
+  Hit moved = hit;
+  if (std::fabs(det) > 1e-30f) {
+    moved.b1 += (c * r1 - b * r2) / det;
+    moved.b2 += (a * r2 - b * r1) / det;
+  }
+  return moved;
 }
 
 bool Scene::smooth_triangle(const Hit& hit, SmoothTriangle* tri) const {

@@ -226,3 +226,87 @@ TEST(MaterialGraph, MeshAttributesUVMapsTangentsObjectAndGenerated) {
   m.object_to_world = {0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   EXPECT_THROW(bad.add_mesh(m.view()), ParameterError);
 }
+
+namespace {
+
+// The quad [-1, 1]² at z = 0 (two triangles) with UV map 0 = ((x + 1)/2, (y + 1)/2) per corner.
+Mesh uv_quad() {
+  Mesh m;
+  m.positions = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  m.uv_maps = {{0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1}};
+  return m;
+}
+
+}  // namespace
+
+// A bump whose height is linear in UV: the height sub-program is re-run at the offset points
+// (its UV node copied), so the normal is normalize(N − distance·∇h) on both triangles.
+TEST(MaterialGraph, BumpReevaluatesTheHeightAtOffsetPoints) {
+  TextureStore store;
+  const json graph = {
+      {"nodes", {{{"op", "uv"}},
+                 {{"op", "separate"}, {"vector", {{"node", 0}}}},
+                 {{"op", "math"}, {"operation", "multiply"}, {"a", {{"node", 1}, {"out", "x"}}}, {"b", 0.5}},
+                 {{"op", "bump"}, {"height", {{"node", 2}}}, {"distance", 0.2}},
+                 {{"op", "bump"}, {"height", {{"node", 2}}}, {"distance", 0.2}, {"invert", true},
+                  {"strength", 0.5}, {"normal", {{"node", 3}}}}}},
+      {"closures", {{{"model", "lambertian"}, {"normal", {{"node", 3}}}}}}};
+  const auto g = read_material_graph(graph, "graph", "", store);
+  EXPECT_TRUE(g->reads_offsets);
+  Scene scene;
+  scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+  scene.add_mesh(uv_quad().view());
+  scene.commit();
+  const Vec3 n(0, 0, 1);
+  // h = 0.5 u = 0.25 (x + 1): ∇h = (0.25, 0, 0).
+  const Vec3 bumped = normalize(n - Vec3(0.25f, 0, 0) * 0.2f);
+  std::vector<Vec3> registers(MaterialGraph::kMaxRegisters);
+  for (uint32_t triangle : {0u, 1u}) {
+    Hit hit;
+    hit.triangle = triangle;
+    hit.b1 = 0.3f;
+    hit.b2 = 0.4f;
+    const SurfacePoint sp = scene.surface_point(hit);
+    const ShadingContext ctx{&scene, &hit, sp.p, sp.ns, sp.ng, normalize(Vec3(0.1f, 0.2f, 1.0f)), false};
+    g->evaluate(ctx, registers.data());
+    const Vec3 got = registers[size_t(g->closures[0].normal_reg)];
+    EXPECT_NEAR(got.x, bumped.x, 2e-4f);
+    EXPECT_NEAR(got.y, bumped.y, 2e-4f);
+    EXPECT_NEAR(got.z, bumped.z, 2e-4f);
+  }
+  // A bump's height may not depend on a bump's normal (it would need offsets of offsets).
+  json nested = graph;
+  nested["nodes"].push_back({{"op", "fresnel"}, {"normal", {{"node", 3}}}});
+  nested["nodes"].push_back({{"op", "bump"}, {"height", {{"node", 5}}}});
+  EXPECT_EQ(graph_error(nested),
+            "graph.nodes[6].height: a bump's height cannot depend on another bump's normal");
+}
+
+// Object-space tangents go to world space through the object matrix: under a non-uniform
+// scale the tangent stretches with the surface (it is not a normal).
+TEST(MaterialGraph, TangentsFollowANonUniformScale) {
+  Scene scene;
+  scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+  Mesh m = uv_quad();
+  for (size_t i = 0; i < m.positions.size(); i += 3) m.positions[i] *= 2.0f;  // scale x by 2
+  m.object_to_world = {2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  m.tangents = {std::vector<float>(24, 0.0f)};
+  for (size_t c = 0; c < 6; ++c) {
+    m.tangents[0][4 * c] = 0.6f;  // object space (0.6, 0.8, 0), sign 1
+    m.tangents[0][4 * c + 1] = 0.8f;
+    m.tangents[0][4 * c + 3] = 1.0f;
+  }
+  scene.add_mesh(m.view());
+  scene.commit();
+  Hit hit;
+  hit.b1 = 0.2f;
+  hit.b2 = 0.3f;
+  Vec3 t;
+  float sign = 0.0f;
+  ASSERT_TRUE(scene.tangent(hit, 0, &t, &sign));
+  EXPECT_FLOAT_EQ(t.x, 1.2f);
+  EXPECT_FLOAT_EQ(t.y, 0.8f);
+  EXPECT_FLOAT_EQ(t.z, 0.0f);
+  EXPECT_FLOAT_EQ(sign, 1.0f);
+}

@@ -23,7 +23,7 @@ struct Hit;
 enum class GraphOp : uint8_t {
   Const, UV, Generated, Object, Position, Normal, Incoming, Image, Transform, MixRGB, Math,
   VectorMath, Invert, Gamma, BrightContrast, HSV, Separate, Combine, ColorRamp, Fresnel,
-  LayerWeight, NormalMap,
+  LayerWeight, NormalMap, Bump,
 };
 
 // Registers hold a float as (f, f, f), colours and vectors as themselves; reading a colour or a
@@ -42,7 +42,10 @@ struct GraphNode {
   bool clamp = false;  // mix_rgb, math: saturate the result
   bool flag = false;   // image: unassociate alpha; transform: normalise
   int index = -1;      // texture, UV map, ramp or matrix
-  std::array<GraphInput, 5> in{};
+  // Where the node reads the surface: at the hit (0), or at the bump offsets dx (1) or dy (2)
+  // when it is a copy in a bump's height sub-program.
+  uint8_t offset = 0;
+  std::array<GraphInput, 6> in{};
   int out = 0;  // first output register; a node's outputs are consecutive
 };
 
@@ -55,6 +58,7 @@ struct GraphClosure {
   bool all_constant = true;
   BxDFPtr prebuilt;                  // when every parameter is constant: built once
   int normal_reg = -1;               // register of a perturbed normal, or -1
+  bool diffuse_closure = false;      // one of Cycles' diffuse closures (bump-shadowed)
 };
 
 struct ColorRampTable {
@@ -84,6 +88,12 @@ class MaterialGraph {
   std::vector<ColorRampTable> ramps;
   std::vector<std::array<float, 12>> matrices;  // 3×4 rows
   int num_registers = 0;
+  bool reads_offsets = false;  // some node is a bump's copy at an offset point
+
+  // The length of the bump offsets, in world units, relative to the point's distance from the
+  // origin (so that p + offset stays well resolved in float): Cycles' offsets are its ray
+  // differentials, about a pixel's footprint; ours are a fixed small step (docs/material-graph.md).
+  static constexpr float kBumpOffset = 1e-3f;
 
   // Runs the program; `registers` holds kMaxRegisters.
   void evaluate(const ShadingContext& ctx, Vec3* registers) const;

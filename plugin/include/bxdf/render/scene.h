@@ -88,6 +88,9 @@ class Scene {
   Vec3 smooth_normal(const Hit& hit) const;
   Vec3 object_position(const Hit& hit, const Vec3& p) const;
   Vec3 generated(const Hit& hit, const Vec3& p) const;  // object position in the texture space
+  // The hit moved by `dp` (world space, along the triangle's plane): its barycentrics follow,
+  // so attributes read there are the triangle's own, extrapolated linearly past its edges.
+  Hit offset_hit(const Hit& hit, const Vec3& dp) const;
   // Emitted radiance of the material at a hit (both sides).
   const RGB& emission(uint32_t material) const { return materials_[material].emission; }
   // η_t/η_i of the material's first transmissive component (1 when none), read from the
