@@ -259,7 +259,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     }
   }
 
-  if (!finite_nonnegative(L)) {
+  const bool finite = std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b);
+  if (!finite || (!scene_.signed_emission() && !finite_nonnegative(L))) {
     ++stats.rejected;
     L = RGB(0.0f);
   }

@@ -120,11 +120,19 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
           out[0] = ctx.n;  // Cycles: no tangent attribute, unperturbed normal
           break;
         }
-        // Cycles makes every closure normal a valid reflection; done here once per map.
+        // Cycles composes the mapped normal in object space (tangent and smooth normal there)
+        // and moves it to world space as a normal; it also makes every closure normal a valid
+        // reflection, done here once per map.
+        // The smooth normal is unnormalised (shorter between differing vertex normals), and
+        // keeps its length in object space as Cycles' object-space interpolation has it.
+        const Vec3 smooth = scene.smooth_normal(hit);
+        Vec3 normal = scene.normal_to_object(hit, smooth);
+        const float object_length = length(normal);
+        if (object_length > 0.0f) normal = normal * (length(smooth) / object_length);
+        Vec3 mapped = scene.normal_to_world(hit, normal_map_compose(in(1), tangent, sign, normal));
+        if (!normalize_direction(mapped)) mapped = Vec3(0.0f, 0.0f, 0.0f);
         out[0] = ensure_valid_reflection(
-            ctx.ng, ctx.incoming,
-            normal_map_tangent(in(1), in_float(0), tangent, sign, scene.smooth_normal(hit), ctx.n,
-                               ctx.backfacing));
+            ctx.ng, ctx.incoming, normal_map_finish(mapped, in_float(0), ctx.n, ctx.backfacing));
         break;
       }
       case GraphOp::Bump: {
@@ -146,8 +154,11 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
 }
 
 RGB MaterialGraph::emitted(const Vec3* registers) const {
+  // Signed, as Cycles lets a negative Emission strength or colour take light away; a
+  // non-finite channel emits nothing.
   const Vec3 e = read_input(emission, registers);
-  return RGB(std::max(e.x, 0.0f), std::max(e.y, 0.0f), std::max(e.z, 0.0f));
+  auto finite_or_zero = [](float x) { return std::isfinite(x) ? x : 0.0f; };
+  return RGB(finite_or_zero(e.x), finite_or_zero(e.y), finite_or_zero(e.z));
 }
 
 void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,

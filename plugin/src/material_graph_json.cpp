@@ -159,9 +159,7 @@ class GraphReader {
     g_->emission = j.contains("emission")
                        ? read_value(j["emission"], field + ".emission", Kind::Color, int(node_count_))
                        : GraphInput{};
-    if (g_->emission.reg < 0 && !finite_nonnegative(RGB(g_->emission.constant.x, g_->emission.constant.y,
-                                                          g_->emission.constant.z)))
-      fail(field + ".emission", "must be in [0, inf) per channel, got " + got(j["emission"]));
+    // A negative emission is allowed: Cycles renders it as light taken away.
     if (closures.empty() && g_->emission.reg < 0 && g_->emission.constant == Vec3())
       fail(field, "a graph needs at least one closure or an emission");
     g_->num_registers = next_register_;

@@ -283,9 +283,10 @@ TEST(MaterialGraph, BumpReevaluatesTheHeightAtOffsetPoints) {
             "graph.nodes[6].height: a bump's height cannot depend on another bump's normal");
 }
 
-// Object-space tangents go to world space through the object matrix: under a non-uniform
-// scale the tangent stretches with the surface (it is not a normal).
-TEST(MaterialGraph, TangentsFollowANonUniformScale) {
+// Tangents arrive in world space (moved with the mesh by the object matrix A); normal maps
+// read them in object space, as Cycles composes the mapped normal there, and move normals
+// between the spaces by Aᵀ and A⁻ᵀ.
+TEST(MaterialGraph, TangentsAndNormalsUnderANonUniformScale) {
   Scene scene;
   scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
   Mesh m = uv_quad();
@@ -293,7 +294,7 @@ TEST(MaterialGraph, TangentsFollowANonUniformScale) {
   m.object_to_world = {2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   m.tangents = {std::vector<float>(24, 0.0f)};
   for (size_t c = 0; c < 6; ++c) {
-    m.tangents[0][4 * c] = 0.6f;  // object space (0.6, 0.8, 0), sign 1
+    m.tangents[0][4 * c] = 1.2f;  // world (1.2, 0.8, 0) = A (0.6, 0.8, 0), sign 1
     m.tangents[0][4 * c + 1] = 0.8f;
     m.tangents[0][4 * c + 3] = 1.0f;
   }
@@ -305,8 +306,35 @@ TEST(MaterialGraph, TangentsFollowANonUniformScale) {
   Vec3 t;
   float sign = 0.0f;
   ASSERT_TRUE(scene.tangent(hit, 0, &t, &sign));
-  EXPECT_FLOAT_EQ(t.x, 1.2f);
+  EXPECT_FLOAT_EQ(t.x, 0.6f);
   EXPECT_FLOAT_EQ(t.y, 0.8f);
   EXPECT_FLOAT_EQ(t.z, 0.0f);
   EXPECT_FLOAT_EQ(sign, 1.0f);
+  const Vec3 n(0.3f, 0.4f, 0.5f);
+  const Vec3 to_object = scene.normal_to_object(hit, n), to_world = scene.normal_to_world(hit, n);
+  EXPECT_FLOAT_EQ(to_object.x, 0.6f);  // Aᵀ n
+  EXPECT_FLOAT_EQ(to_object.y, 0.4f);
+  EXPECT_FLOAT_EQ(to_world.x, 0.15f);  // A⁻ᵀ n
+  EXPECT_FLOAT_EQ(to_world.z, 0.5f);
+}
+
+// Cycles lets a negative Emission take light away: a graph's emission keeps its sign, and the
+// camera sees it as it is (a black floor, so that only the emission shows).
+TEST(MaterialGraph, NegativeEmissionTakesLightAway) {
+  TextureStore store;
+  const json graph = {{"closures", {{{"model", "lambertian"}, {"params", {{"reflectance", 0.0}}}}}},
+                      {"emission", {-0.05, 0.0, 0.02}}};
+  const auto g = read_material_graph(graph, "graph", "", store);
+  const RGB e = g->emitted(nullptr);
+  EXPECT_EQ(e.r, -0.05f);
+  EXPECT_EQ(e.b, 0.02f);
+  const std::vector<float> image = render_floor(g, nullptr);
+  int floor = 0;
+  for (size_t i = 0; i < image.size(); i += 4) {
+    if (image[i] == 0.0f && image[i + 2] == 0.0f) continue;  // background
+    ++floor;
+    EXPECT_FLOAT_EQ(image[i], -0.05f);
+    EXPECT_FLOAT_EQ(image[i + 2], 0.02f);
+  }
+  EXPECT_GT(floor, 100);
 }
