@@ -14,6 +14,12 @@ Vec3 splat(float v) { return {v, v, v}; }
 
 }  // namespace
 
+// Rodrigues' rotation of p about the unit axis, as Cycles' rotate_around_axis.
+Vec3 rotate_around_axis(const Vec3& p, const Vec3& axis, float angle) {
+  const float c = std::cos(angle), s = std::sin(angle);
+  return p * c + cross(axis, p) * s + axis * (dot(axis, p) * (1.0f - c));
+}
+
 Vec3 read_input(const GraphInput& in, const Vec3* registers) {
   const Vec3 v = in.reg < 0 ? in.constant : registers[in.reg];
   switch (in.convert) {
@@ -161,6 +167,15 @@ RGB MaterialGraph::emitted(const Vec3* registers) const {
   return RGB(finite_or_zero(e.x), finite_or_zero(e.y), finite_or_zero(e.z));
 }
 
+RGB MaterialGraph::holdout(const Vec3* registers) const {
+  RGB total(0.0f);
+  for (const GraphInput& h : holdouts) {
+    const Vec3 w = read_input(h, registers);
+    total += RGB(std::max(w.x, 0.0f), std::max(w.y, 0.0f), std::max(w.z, 0.0f));
+  }
+  return total;
+}
+
 void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
                                  ClosureArena& arena, BSDF& bsdf) const {
   PlainValue values[kMaxClosureParams];
@@ -187,6 +202,21 @@ void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
       }
       model = c.model->place(values, arena);
       if (!model) continue;  // cannot happen: the reader checked the arena's capacity
+    }
+    if (c.oriented()) {
+      // Cycles' Anisotropic BSDF: its Tangent (or the point's), turned about the closure's
+      // normal by Rotation · 2π when that is not 0; a frame of its own.
+      Vec3 n = bsdf.frame().n;
+      if (c.normal_reg >= 0) {
+        Vec3 mapped = registers[c.normal_reg];
+        if (normalize_direction(mapped)) n = mapped;
+      }
+      Vec3 t = c.has_tangent ? read_input(c.tangent, registers) : tangent;
+      const float turns = read_float(c.rotation, registers);
+      if (turns != 0.0f) t = rotate_around_axis(t, n, turns * 2.0f * kPi);
+      const Frame oriented = Frame::from_normal_tangent(n, t);
+      bsdf.add(model, weight, &oriented, c.diffuse_closure);
+      continue;
     }
     if (c.normal_reg >= 0) {
       if (c.normal_reg != frame_reg) {

@@ -149,7 +149,9 @@ class GraphReader {
     size_t arena_bytes = 0;
     for (size_t k = 0; k < closures.size(); ++k) {
       const std::string path = field + ".closures[" + std::to_string(k) + "]";
+      const size_t before = g_->closures.size();
       read_closure(closures[k], path, int(node_count_));
+      if (g_->closures.size() == before) continue;  // a holdout
       const GraphClosure& c = g_->closures.back();
       if (!c.prebuilt) arena_bytes += c.model->place_size + 64;
     }
@@ -493,9 +495,22 @@ class GraphReader {
   void read_closure(const json& j, const std::string& field, int before) {
     if (!j.is_object() || !j.contains("model"))
       fail(field, "expected a closure object with \"model\", got " + got(j));
-    only_keys(j, field, {"model", "weight", "params", "normal", "name"});
     if (!j["model"].is_string()) fail(field + ".model", "expected a model name, got " + got(j["model"]));
     const std::string name = j["model"].get<std::string>();
+    if (name == "holdout") {
+      // Not a BSDF: its weight makes the pixel transparent (camera rays) and it reflects nothing.
+      only_keys(j, field, {"model", "weight", "params", "name"});
+      if (j.contains("params") && !(j["params"].is_object() && j["params"].empty()))
+        fail(field + ".params", "a holdout has no parameters, got " + got(j["params"]));
+      GraphInput w;
+      w.constant = grey(1.0f);
+      if (j.contains("weight")) w = read_value(j["weight"], field + ".weight", Kind::Color, before);
+      if (w.reg < 0 && !finite_nonnegative(RGB(w.constant.x, w.constant.y, w.constant.z)))
+        fail(field + ".weight", "must be in [0, inf) per channel, got " + got(j["weight"]));
+      g_->holdouts.push_back(w);
+      return;
+    }
+    only_keys(j, field, {"model", "weight", "params", "normal", "tangent", "rotation", "name"});
     GraphClosure c;
     c.model = find_model(name);
     if (!c.model) {
@@ -567,6 +582,11 @@ class GraphReader {
       if (n.reg < 0) fail(field + ".normal", "expected a node reference (a normal_map or bump output)");
       c.normal_reg = n.reg;
     }
+    if (j.contains("tangent")) {
+      c.tangent = read_value(j["tangent"], field + ".tangent", Kind::Vector, before);
+      c.has_tangent = true;
+    }
+    if (j.contains("rotation")) c.rotation = read_value(j["rotation"], field + ".rotation", Kind::Float, before);
     g_->closures.push_back(std::move(c));
   }
 

@@ -218,6 +218,24 @@ def test_a_mix_shader_with_a_texture_factor_matches_cycles(tmp_path):
     np.testing.assert_allclose(ours, cycles, rtol=5e-3, atol=1e-4)
 
 
+def test_a_holdout_mix_matches_cycles(tmp_path):
+    """A Mix Shader of Holdout and Diffuse whose factor runs with u, on a transparent film: the
+    alpha is 1 − the holdout weight and the colour the diffuse's share, as in Cycles."""
+    tree = Tree("holdout")
+    mix = tree.surface(tree.add("ShaderNodeMixShader"))
+    _, u, _ = _uv(tree)
+    tree.link(u, mix.inputs["Fac"])
+    tree.link(tree.add("ShaderNodeHoldout").outputs[0], mix.inputs[1])
+    tree.link(tree.add("ShaderNodeBsdfDiffuse", Color=(0.9, 0.5, 0.2, 1.0)).outputs[0], mix.inputs[2])
+    scene = _camera_scene(tree.material, tmp_path)
+    scene.render.film_transparent = True
+    ours = render_rgba(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
+    assert engine.last_error == ""
+    cycles = render_rgba(scene, "CYCLES", str(tmp_path / "cycles.exr"))
+    assert np.ptp(cycles[..., 3]) > 0.5  # the alpha does run from opaque to transparent
+    np.testing.assert_allclose(ours, cycles, rtol=5e-3, atol=1e-4)
+
+
 # ---- value nodes: an Emission colour computed from the UVs, seen at pixel centres --------------
 
 def _uv(tree):

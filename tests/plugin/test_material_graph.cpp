@@ -3,6 +3,7 @@
 // and a Mix of two closures with a texture factor renders as the per-pixel mix of the two.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -43,7 +44,7 @@ std::string graph_error(const json& graph) {
 
 // A floor quad filling the view of a camera looking straight down, lit by a point light.
 std::vector<float> render_floor(const std::shared_ptr<const MaterialGraph>& graph,
-                                const BxDFPtr& plain) {
+                                const BxDFPtr& plain, bool transparent = false) {
   Scene scene;
   Material m;
   if (graph) m.graph = graph;
@@ -61,6 +62,7 @@ std::vector<float> render_floor(const std::shared_ptr<const MaterialGraph>& grap
   s.max_bounces = 0;
   s.filter = FilterType::PixelCenter;
   s.threads = 1;
+  s.transparent_background = transparent;
   return render_scene(scene, c, s).rgba();
 }
 
@@ -337,4 +339,59 @@ TEST(MaterialGraph, NegativeEmissionTakesLightAway) {
     EXPECT_FLOAT_EQ(image[i + 2], 0.02f);
   }
   EXPECT_GT(floor, 100);
+}
+
+// Holdout (Cycles): the pixel turns transparent by the holdout weight on camera rays and the
+// holdout reflects nothing; a half holdout mixed with a diffuse keeps half of the diffuse.
+TEST(MaterialGraph, HoldoutMakesThePixelTransparent) {
+  TextureStore store;
+  const json diffuse = {{"closures", {{{"model", "lambertian"}, {"params", {{"reflectance", 0.8}}}}}}};
+  const json full = {{"closures", {{{"model", "holdout"}}}}};
+  const json half = {{"closures", {{{"model", "holdout"}, {"weight", 0.5}},
+                                   {{"model", "lambertian"}, {"weight", 0.5}, {"params", {{"reflectance", 0.8}}}}}}};
+  const auto lit = render_floor(read_material_graph(diffuse, "graph", "", store), nullptr, true);
+  const auto gone = render_floor(read_material_graph(full, "graph", "", store), nullptr, true);
+  const auto halved = render_floor(read_material_graph(half, "graph", "", store), nullptr, true);
+  int floor = 0;
+  for (size_t i = 0; i < lit.size(); i += 4) {
+    if (lit[i + 3] == 0.0f) continue;  // background
+    ++floor;
+    EXPECT_EQ(gone[i], 0.0f);
+    EXPECT_EQ(gone[i + 3], 0.0f);
+    EXPECT_FLOAT_EQ(halved[i + 3], 0.5f);
+    EXPECT_NEAR(halved[i], 0.5f * lit[i], 1e-6f);
+  }
+  EXPECT_GT(floor, 100);
+  EXPECT_EQ(graph_error({{"closures", {{{"model", "holdout"}, {"params", json::object()}}}}}),
+            "(accepted)");
+  EXPECT_EQ(graph_error({{"closures", {{{"model", "holdout"}, {"params", {{"color", 1}}}}}}}),
+            "graph.closures[0].params: a holdout has no parameters, got {\"color\":1}");
+}
+
+// Anisotropic orientation: Rotation turns the tangent about the normal (a quarter turn of the
+// point's tangent x is the tangent y), and a Tangent value replaces the point's.
+TEST(MaterialGraph, AnisotropicTangentAndRotation) {
+  TextureStore store;
+  auto glossy = [](const json& extra) {
+    json c = {{"model", "cycles_glossy"},
+              {"params", {{"distribution", "ggx"}, {"roughness", 0.4}, {"anisotropy", 0.8}}}};
+    for (auto it = extra.begin(); it != extra.end(); ++it) c[it.key()] = it.value();
+    return json{{"closures", {c}}};
+  };
+  const Vec3 n(0, 0, 1), t(1, 0, 0);
+  auto f = [&](const json& graph) {
+    const auto g = read_material_graph(graph, "graph", "", store);
+    std::vector<Vec3> registers(MaterialGraph::kMaxRegisters);
+    ClosureArena arena;
+    BSDF bsdf(Frame::from_normal_tangent(n, t), n);
+    g->add_closures(registers.data(), t, arena, bsdf);
+    return bsdf.f(normalize(Vec3(0.3f, 0.5f, 1.0f)), normalize(Vec3(-0.6f, 0.1f, 1.0f)));
+  };
+  const RGB plain = f(glossy(json::object()));
+  const RGB turned = f(glossy({{"rotation", 0.25}}));
+  const RGB along_y = f(glossy({{"tangent", {0.0, 1.0, 0.0}}}));
+  EXPECT_GT(std::fabs(plain.r - turned.r), 1e-3f * plain.r);  // anisotropy shows
+  EXPECT_NEAR(turned.r, along_y.r, 1e-5f * along_y.r);
+  const RGB full_turn = f(glossy({{"rotation", 1.0}}));
+  EXPECT_NEAR(full_turn.r, plain.r, 1e-4f * plain.r);
 }

@@ -59,6 +59,12 @@ struct GraphClosure {
   BxDFPtr prebuilt;                  // when every parameter is constant: built once
   int normal_reg = -1;               // register of a perturbed normal, or -1
   bool diffuse_closure = false;      // one of Cycles' diffuse closures (bump-shadowed)
+  // Anisotropic orientation: a tangent value (world space; reg −1 and no constant: the point's
+  // own tangent) and a rotation in turns about the normal (Cycles' Anisotropic BSDF).
+  bool has_tangent = false;
+  GraphInput tangent;
+  GraphInput rotation;  // constant 0: none
+  bool oriented() const { return has_tangent || rotation.reg >= 0 || rotation.constant.x != 0.0f; }
 };
 
 struct ColorRampTable {
@@ -98,6 +104,9 @@ class MaterialGraph {
   // Runs the program; `registers` holds kMaxRegisters.
   void evaluate(const ShadingContext& ctx, Vec3* registers) const;
   RGB emitted(const Vec3* registers) const;
+  // Holdout closures' total weight (Cycles makes the pixel transparent by it on camera rays).
+  std::vector<GraphInput> holdouts;
+  RGB holdout(const Vec3* registers) const;
   bool emission_is_constant() const { return emission.reg < 0; }
   // Adds each closure with a non-zero weight to `bsdf`, placing per-hit models in `arena`.
   // `tangent` orients anisotropic closures (as the point's own frame does).
