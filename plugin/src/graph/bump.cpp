@@ -8,15 +8,6 @@
 
 namespace bxdf::render {
 
-namespace {
-
-Vec3 safe_normalize(const Vec3& v) {
-  const float l = length(v);
-  return l != 0.0f ? v / l : v;
-}
-
-}  // namespace
-
 Vec3 bump_normal(const BumpInputs& in, const Vec3& ng, const Vec3& incoming) {
   const Vec3& n = in.normal;
   const Vec3 rx = cross(in.dpdy, n), ry = cross(n, in.dpdx);

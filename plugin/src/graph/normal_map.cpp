@@ -3,15 +3,6 @@
 
 namespace bxdf::render {
 
-namespace {
-
-Vec3 safe_normalize(const Vec3& v) {
-  const float l = length(v);
-  return l != 0.0f ? v / l : v;
-}
-
-}  // namespace
-
 Vec3 normal_map_compose(const Vec3& color, const Vec3& tangent, float sign, const Vec3& normal) {
   const Vec3 c = (color - Vec3(0.5f, 0.5f, 0.5f)) * 2.0f;
   const Vec3 b = cross(normal, tangent) * sign;

@@ -11,6 +11,12 @@
 
 namespace bxdf::render {
 
+// Cycles' safe_normalize: a zero vector stays zero.
+inline Vec3 safe_normalize(const Vec3& v) {
+  const float l = length(v);
+  return l != 0.0f ? v / l : v;
+}
+
 // Names as the graph files spell them (Blender's identifiers, lower case), in enum order.
 enum class MixBlend {
   Mix, Add, Multiply, Screen, Overlay, Subtract, Divide, Difference, Darken, Lighten, SoftLight,
