@@ -51,6 +51,17 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
     points[1] = ctx.p + dpdx;
     points[2] = ctx.p + dpdy;
   }
+  if (default_tangent_reg >= 0) {
+    // Cycles' Tangent node default (svm_node_tangent, radial about Z): from generated
+    // coordinates, moved to world space as a normal is, then made perpendicular to N.
+    const Vec3 g = scene.generated(*ctx.hit, ctx.p);
+    Vec3 t = scene.normal_to_world(*ctx.hit, Vec3(-(g.y - 0.5f), g.x - 0.5f, 0.0f));
+    if (normalize_direction(t)) {
+      Vec3 side = cross(t, ctx.n);
+      t = normalize_direction(side) ? cross(ctx.n, side) : Vec3(0.0f, 0.0f, 0.0f);
+    }
+    r[default_tangent_reg] = t;
+  }
   for (const GraphNode& node : nodes) {
     auto in = [&](int i) { return read_input(node.in[size_t(i)], r); };
     auto in_float = [&](int i) { return read_float(node.in[size_t(i)], r); };
@@ -211,7 +222,9 @@ void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
         Vec3 mapped = registers[c.normal_reg];
         if (normalize_direction(mapped)) n = mapped;
       }
-      Vec3 t = c.has_tangent ? read_input(c.tangent, registers) : tangent;
+      Vec3 t = c.has_tangent            ? read_input(c.tangent, registers)
+               : default_tangent_reg >= 0 ? registers[default_tangent_reg]
+                                          : tangent;
       const float turns = read_float(c.rotation, registers);
       if (turns != 0.0f) t = rotate_around_axis(t, n, turns * 2.0f * kPi);
       const Frame oriented = Frame::from_normal_tangent(n, t);

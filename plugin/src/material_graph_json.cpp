@@ -587,6 +587,16 @@ class GraphReader {
       c.has_tangent = true;
     }
     if (j.contains("rotation")) c.rotation = read_value(j["rotation"], field + ".rotation", Kind::Float, before);
+    // Anisotropic closures are oriented by Cycles' default tangent unless given their own.
+    for (const char* key : {"anisotropy", "anisotropic"})
+      if (params.contains(key))
+        c.anisotropic = c.anisotropic || !params[key].is_number() || params[key].get<double>() != 0.0;
+    if (c.oriented() && !c.has_tangent && g_->default_tangent_reg < 0) {
+      g_->default_tangent_reg = next_register_++;
+      if (next_register_ > MaterialGraph::kMaxRegisters)
+        fail(field, "the graph needs more than " + std::to_string(MaterialGraph::kMaxRegisters) +
+                        " registers");
+    }
     g_->closures.push_back(std::move(c));
   }
 

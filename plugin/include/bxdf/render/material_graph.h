@@ -64,7 +64,10 @@ struct GraphClosure {
   bool has_tangent = false;
   GraphInput tangent;
   GraphInput rotation;  // constant 0: none
-  bool oriented() const { return has_tangent || rotation.reg >= 0 || rotation.constant.x != 0.0f; }
+  bool anisotropic = false;  // an anisotropy parameter that is referenced or not 0
+  bool oriented() const {
+    return anisotropic || has_tangent || rotation.reg >= 0 || rotation.constant.x != 0.0f;
+  }
 };
 
 struct ColorRampTable {
@@ -95,6 +98,9 @@ class MaterialGraph {
   std::vector<std::array<float, 12>> matrices;  // 3×4 rows
   int num_registers = 0;
   bool reads_offsets = false;  // some node is a bump's copy at an offset point
+  // Register of Cycles' default tangent (radial about the object's Z axis, from generated
+  // coordinates), filled before the program runs when an oriented closure needs it; or −1.
+  int default_tangent_reg = -1;
 
   // The length of the bump offsets, in world units, relative to the point's distance from the
   // origin (so that p + offset stays well resolved in float): Cycles' offsets are its ray
