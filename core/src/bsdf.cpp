@@ -12,9 +12,22 @@ bool agrees_with_geometry(uint32_t flags, bool reflect) {
   return reflect ? (flags & kReflection) != 0 : (flags & kTransmission) != 0;
 }
 
+// Cycles' bump_shadowing_term (closure/bsdf.h, after Chiang et al., "Taming the Shadow
+// Terminator"): `ns` the shading normal, `n` the closure's perturbed one, `wi` the light.
+float bump_shadowing_term(Vec3 ns, const Vec3& n, const Vec3& wi) {
+  const float cos_ni = dot(n, wi);
+  if (cos_ni < 0.0f) ns = -ns;
+  const float denominator = cos_ni * dot(ns, n);
+  const float g = denominator != 0.0f ? dot(ns, wi) / denominator : 0.0f;
+  if (g >= 1.0f) return 1.0f;
+  if (!(g >= 0.0f)) return 0.0f;
+  const float g2 = g * g;
+  return -g2 * g + g2 + g;  // smooth at the perpendicular angle
+}
+
 }  // namespace
 
-void BSDF::add(const BxDF* component, const RGB& weight, const Frame* frame) {
+void BSDF::add(const BxDF* component, const RGB& weight, const Frame* frame, bool bump_shadowed) {
   if (!component) throw ParameterError("BSDF::add: component is null");
   if (count_ >= kMaxComponents)
     throw ParameterError("BSDF::add: at most " + std::to_string(kMaxComponents) +
@@ -25,6 +38,7 @@ void BSDF::add(const BxDF* component, const RGB& weight, const Frame* frame) {
   weights_[count_] = weight;
   sample_weights_[count_] = (weight.r + weight.g + weight.b) * (1.0f / 3.0f);
   frames_[count_] = frame ? *frame : frame_;
+  bump_shadowed_[count_] = bump_shadowed && frame && !(frame->n == frame_.n);
   ++count_;
 }
 
@@ -58,7 +72,9 @@ RGB BSDF::weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask
     const Vec3 wo = frames_[i].to_local(wo_world);
     if (wo.z == 0.0f) continue;
     const Vec3 wi = frames_[i].to_local(wi_world);
-    sum += weights_[i] * term(b.f(wo, wi), wi);
+    RGB f = b.f(wo, wi);
+    if (bump_shadowed_[i]) f *= bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
+    sum += weights_[i] * term(f, wi);
   }
   return sum;
 }

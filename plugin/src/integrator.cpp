@@ -216,6 +216,13 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
         const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped};
         mat.graph->evaluate(ctx, scratch.registers);
       }
+      if (camera_ray && !mat.graph->holdouts.empty()) {
+        // Cycles' holdout: on camera rays the pixel turns transparent by the holdout weight
+        // (with a transparent film), and a full holdout ends the path before its emission.
+        const RGB h = mat.graph->holdout(scratch.registers);
+        if (settings_.transparent_background) result.alpha -= std::min(h.average(), 1.0f);
+        if (h.r >= 1.0f && h.g >= 1.0f && h.b >= 1.0f) break;
+      }
       if (!mat.graph->emission_is_constant()) emitted = mat.graph->emitted(scratch.registers);
       if (scatters) {
         scratch.arena.reset();
@@ -278,7 +285,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     }
   }
 
-  if (!finite_nonnegative(L)) {
+  const bool finite = std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b);
+  if (!finite || (!scene_.signed_emission() && !finite_nonnegative(L))) {
     ++stats.rejected;
     L = RGB(0.0f);
   }

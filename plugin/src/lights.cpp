@@ -342,7 +342,8 @@ float light_power(const Light& light, float scene_radius) {
     case LightType::Area: return kPi * light.radiance.average() / light.inv_area;
     case LightType::Mesh: {
       float p = 0.0f;
-      for (const EmissiveTriangle& t : light.triangles) p += t.radiance.average() * t.area;
+      // Negative emission (Cycles' light taken away) is sampled by its magnitude.
+      for (const EmissiveTriangle& t : light.triangles) p += std::fabs(t.radiance.average()) * t.area;
       return 2.0f * kPi * p;  // two-sided
     }
   }

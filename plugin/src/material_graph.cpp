@@ -1,5 +1,8 @@
 #include "bxdf/render/material_graph.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "bxdf/render/graph_ops.h"
 #include "bxdf/render/scene.h"
 
@@ -10,6 +13,12 @@ namespace {
 Vec3 splat(float v) { return {v, v, v}; }
 
 }  // namespace
+
+// Rodrigues' rotation of p about the unit axis, as Cycles' rotate_around_axis.
+Vec3 rotate_around_axis(const Vec3& p, const Vec3& axis, float angle) {
+  const float c = std::cos(angle), s = std::sin(angle);
+  return p * c + cross(axis, p) * s + axis * (dot(axis, p) * (1.0f - c));
+}
 
 Vec3 read_input(const GraphInput& in, const Vec3* registers) {
   const Vec3 v = in.reg < 0 ? in.constant : registers[in.reg];
@@ -23,16 +32,48 @@ Vec3 read_input(const GraphInput& in, const Vec3* registers) {
 
 void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
   const Scene& scene = *ctx.scene;
+  // The surface each node reads: the hit, or the bump offsets p + dpdx, p + dpdy (with the
+  // hit's barycentrics moved along, so that attributes follow, as Cycles' bump_dx nodes do).
+  const Hit* hits[3] = {ctx.hit, ctx.hit, ctx.hit};
+  Vec3 points[3] = {ctx.p, ctx.p, ctx.p};
+  Hit offset_hits[2];
+  Vec3 dpdx, dpdy;
+  if (reads_offsets) {
+    Vec3 a, b;
+    coordinate_system(ctx.ng, &a, &b);
+    const float scale = std::max({1.0f, std::fabs(ctx.p.x), std::fabs(ctx.p.y), std::fabs(ctx.p.z)});
+    dpdx = a * (kBumpOffset * scale);
+    dpdy = b * (kBumpOffset * scale);
+    offset_hits[0] = scene.offset_hit(*ctx.hit, dpdx);
+    offset_hits[1] = scene.offset_hit(*ctx.hit, dpdy);
+    hits[1] = &offset_hits[0];
+    hits[2] = &offset_hits[1];
+    points[1] = ctx.p + dpdx;
+    points[2] = ctx.p + dpdy;
+  }
+  if (default_tangent_reg >= 0) {
+    // Cycles' Tangent node default (svm_node_tangent, radial about Z): from generated
+    // coordinates, moved to world space as a normal is, then made perpendicular to N.
+    const Vec3 g = scene.generated(*ctx.hit, ctx.p);
+    Vec3 t = scene.normal_to_world(*ctx.hit, Vec3(-(g.y - 0.5f), g.x - 0.5f, 0.0f));
+    if (normalize_direction(t)) {
+      Vec3 side = cross(t, ctx.n);
+      t = normalize_direction(side) ? cross(ctx.n, side) : Vec3(0.0f, 0.0f, 0.0f);
+    }
+    r[default_tangent_reg] = t;
+  }
   for (const GraphNode& node : nodes) {
     auto in = [&](int i) { return read_input(node.in[size_t(i)], r); };
     auto in_float = [&](int i) { return read_float(node.in[size_t(i)], r); };
     Vec3* out = r + node.out;
+    const Hit& hit = *hits[node.offset];
+    const Vec3& p = points[node.offset];
     switch (node.op) {
       case GraphOp::Const: out[0] = in(0); break;
-      case GraphOp::UV: out[0] = scene.uv(*ctx.hit, node.index); break;
-      case GraphOp::Generated: out[0] = scene.generated(*ctx.hit, ctx.p); break;
-      case GraphOp::Object: out[0] = scene.object_position(*ctx.hit, ctx.p); break;
-      case GraphOp::Position: out[0] = ctx.p; break;
+      case GraphOp::UV: out[0] = scene.uv(hit, node.index); break;
+      case GraphOp::Generated: out[0] = scene.generated(hit, p); break;
+      case GraphOp::Object: out[0] = scene.object_position(hit, p); break;
+      case GraphOp::Position: out[0] = p; break;
       case GraphOp::Normal: out[0] = ctx.n; break;
       case GraphOp::Incoming: out[0] = ctx.incoming; break;
       case GraphOp::Image: {
@@ -92,12 +133,37 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
       case GraphOp::NormalMap: {
         Vec3 tangent;
         float sign = 1.0f;
-        if (!scene.tangent(*ctx.hit, node.index, &tangent, &sign)) {
+        if (!scene.tangent(hit, node.index, &tangent, &sign)) {
           out[0] = ctx.n;  // Cycles: no tangent attribute, unperturbed normal
           break;
         }
-        out[0] = normal_map_tangent(in(1), in_float(0), tangent, sign,
-                                    scene.smooth_normal(*ctx.hit), ctx.n, ctx.backfacing);
+        // Cycles composes the mapped normal in object space (tangent and smooth normal there)
+        // and moves it to world space as a normal; it also makes every closure normal a valid
+        // reflection, done here once per map.
+        // The smooth normal is unnormalised (shorter between differing vertex normals), and
+        // keeps its length in object space as Cycles' object-space interpolation has it.
+        const Vec3 smooth = scene.smooth_normal(hit);
+        Vec3 normal = scene.normal_to_object(hit, smooth);
+        const float object_length = length(normal);
+        if (object_length > 0.0f) normal = normal * (length(smooth) / object_length);
+        Vec3 mapped = scene.normal_to_world(hit, normal_map_compose(in(1), tangent, sign, normal));
+        if (!normalize_direction(mapped)) mapped = Vec3(0.0f, 0.0f, 0.0f);
+        out[0] = ensure_valid_reflection(
+            ctx.ng, ctx.incoming, normal_map_finish(mapped, in_float(0), ctx.n, ctx.backfacing));
+        break;
+      }
+      case GraphOp::Bump: {
+        BumpInputs b;
+        b.strength = in_float(0);
+        b.distance = in_float(1);
+        b.height = in_float(2);
+        b.normal = node.in[3].reg < 0 ? ctx.n : in(3);
+        b.height_x = in_float(4);
+        b.height_y = in_float(5);
+        b.dpdx = dpdx;
+        b.dpdy = dpdy;
+        b.invert = node.flag;
+        out[0] = bump_normal(b, ctx.ng, ctx.incoming);
         break;
       }
     }
@@ -105,8 +171,20 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
 }
 
 RGB MaterialGraph::emitted(const Vec3* registers) const {
+  // Signed, as Cycles lets a negative Emission strength or colour take light away; a
+  // non-finite channel emits nothing.
   const Vec3 e = read_input(emission, registers);
-  return RGB(std::max(e.x, 0.0f), std::max(e.y, 0.0f), std::max(e.z, 0.0f));
+  auto finite_or_zero = [](float x) { return std::isfinite(x) ? x : 0.0f; };
+  return RGB(finite_or_zero(e.x), finite_or_zero(e.y), finite_or_zero(e.z));
+}
+
+RGB MaterialGraph::holdout(const Vec3* registers) const {
+  RGB total(0.0f);
+  for (const GraphInput& h : holdouts) {
+    const Vec3 w = read_input(h, registers);
+    total += RGB(std::max(w.x, 0.0f), std::max(w.y, 0.0f), std::max(w.z, 0.0f));
+  }
+  return total;
 }
 
 void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
@@ -136,6 +214,23 @@ void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
       model = c.model->place(values, arena);
       if (!model) continue;  // cannot happen: the reader checked the arena's capacity
     }
+    if (c.oriented()) {
+      // Cycles' Anisotropic BSDF: its Tangent (or the point's), turned about the closure's
+      // normal by Rotation · 2π when that is not 0; a frame of its own.
+      Vec3 n = bsdf.frame().n;
+      if (c.normal_reg >= 0) {
+        Vec3 mapped = registers[c.normal_reg];
+        if (normalize_direction(mapped)) n = mapped;
+      }
+      Vec3 t = c.has_tangent            ? read_input(c.tangent, registers)
+               : default_tangent_reg >= 0 ? registers[default_tangent_reg]
+                                          : tangent;
+      const float turns = read_float(c.rotation, registers);
+      if (turns != 0.0f) t = rotate_around_axis(t, n, turns * 2.0f * kPi);
+      const Frame oriented = Frame::from_normal_tangent(n, t);
+      bsdf.add(model, weight, &oriented, c.diffuse_closure);
+      continue;
+    }
     if (c.normal_reg >= 0) {
       if (c.normal_reg != frame_reg) {
         Vec3 n = registers[c.normal_reg];
@@ -143,7 +238,7 @@ void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
         if (frame_reg >= 0) frame = Frame::from_normal_tangent(n, tangent);
       }
       if (frame_reg == c.normal_reg) {
-        bsdf.add(model, weight, &frame);
+        bsdf.add(model, weight, &frame, c.diffuse_closure);
         continue;
       }
     }

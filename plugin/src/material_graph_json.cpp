@@ -87,6 +87,11 @@ const std::vector<OpSpec>& op_specs() {
       {"normal_map", GraphOp::NormalMap,
        {{"strength", Kind::Float, grey(1)}, {"color", Kind::Color, Vec3(0.5f, 0.5f, 1.0f)}},
        {{"normal", 0, Kind::Vector}}},
+      // Inputs 4 and 5 (the height at the two offsets) are filled by the reader.
+      {"bump", GraphOp::Bump,
+       {{"strength", Kind::Float, grey(1)}, {"distance", Kind::Float, grey(1)},
+        {"height", Kind::Float, grey(1)}, {"normal", Kind::Vector, grey(0), true}},
+       {{"normal", 0, Kind::Vector}}},
   };
   return specs;
 }
@@ -135,6 +140,8 @@ class GraphReader {
       node.flag = t.colorspace != TextureColorspace::NonColor &&
                   (t.alpha == TextureAlpha::Straight || t.alpha == TextureAlpha::Premultiplied);
     }
+    for (size_t k = 0; k < g_->nodes.size(); ++k)  // bump copies read images as the originals do
+      if (g_->nodes[k].op == GraphOp::Image) g_->nodes[k].flag = g_->nodes[original_[k]].flag;
     const json& closures = j.contains("closures") ? j["closures"] : json::array();
     if (!closures.is_array() || closures.size() > size_t(BSDF::kMaxComponents))
       fail(field + ".closures", "expected an array of at most " +
@@ -142,7 +149,9 @@ class GraphReader {
     size_t arena_bytes = 0;
     for (size_t k = 0; k < closures.size(); ++k) {
       const std::string path = field + ".closures[" + std::to_string(k) + "]";
+      const size_t before = g_->closures.size();
       read_closure(closures[k], path, int(node_count_));
+      if (g_->closures.size() == before) continue;  // a holdout
       const GraphClosure& c = g_->closures.back();
       if (!c.prebuilt) arena_bytes += c.model->place_size + 64;
     }
@@ -152,9 +161,7 @@ class GraphReader {
     g_->emission = j.contains("emission")
                        ? read_value(j["emission"], field + ".emission", Kind::Color, int(node_count_))
                        : GraphInput{};
-    if (g_->emission.reg < 0 && !finite_nonnegative(RGB(g_->emission.constant.x, g_->emission.constant.y,
-                                                          g_->emission.constant.z)))
-      fail(field + ".emission", "must be in [0, inf) per channel, got " + got(j["emission"]));
+    // A negative emission is allowed: Cycles renders it as light taken away.
     if (closures.empty() && g_->emission.reg < 0 && g_->emission.constant == Vec3())
       fail(field, "a graph needs at least one closure or an emission");
     g_->num_registers = next_register_;
@@ -281,13 +288,57 @@ class GraphReader {
   int add_node(GraphNode node, const OpSpec& spec) {
     int count = 0;
     for (const OutputSpec& o : spec.outputs) count = std::max(count, o.offset + 1);
+    return add_node(node, count);
+  }
+  int add_node(GraphNode node, int count) {
     node.out = next_register_;
     next_register_ += count;
     if (next_register_ > MaterialGraph::kMaxRegisters)
       fail("graph.nodes", "the graph needs more than " + std::to_string(MaterialGraph::kMaxRegisters) +
                               " registers");
+    register_owner_.insert(register_owner_.end(), size_t(count), g_->nodes.size());
+    output_count_.push_back(count);
+    original_.push_back(g_->nodes.size());
     g_->nodes.push_back(node);
     return node.out;
+  }
+
+  // A copy of the program behind `value` evaluated at bump offset `offset` (1: dx, 2: dy):
+  // the nodes it depends on that read the surface, directly or through their inputs, are
+  // copied with offset set; the rest are shared with the original.
+  GraphInput offset_copy(const GraphInput& value, uint8_t offset, const std::string& field) {
+    if (value.reg < 0) return value;
+    const size_t count = g_->nodes.size();
+    std::vector<char> needed(count, 0);
+    needed[register_owner_[size_t(value.reg)]] = 1;
+    for (size_t i = count; i-- > 0;)
+      if (needed[i])
+        for (const GraphInput& in : g_->nodes[i].in)
+          if (in.reg >= 0) needed[register_owner_[size_t(in.reg)]] = 1;
+    std::vector<int> copied(size_t(next_register_), -1);  // register → its copy's register
+    for (size_t i = 0; i < count; ++i) {
+      if (!needed[i]) continue;
+      GraphNode node = g_->nodes[i];
+      bool varies = node.op == GraphOp::UV || node.op == GraphOp::Generated ||
+                    node.op == GraphOp::Object || node.op == GraphOp::Position ||
+                    node.op == GraphOp::NormalMap;
+      for (GraphInput& in : node.in)
+        if (in.reg >= 0 && copied[size_t(in.reg)] >= 0) {
+          in.reg = copied[size_t(in.reg)];
+          varies = true;
+        }
+      if (!varies) continue;
+      if (node.op == GraphOp::Bump)
+        fail(field, "a bump's height cannot depend on another bump's normal");
+      node.offset = offset;
+      const int outputs = output_count_[i];
+      const int first = add_node(node, outputs);
+      original_.back() = i;
+      for (int k = 0; k < outputs; ++k) copied[size_t(g_->nodes[i].out + k)] = first + k;
+    }
+    GraphInput out = value;
+    if (copied[size_t(value.reg)] >= 0) out.reg = copied[size_t(value.reg)];
+    return out;
   }
 
   void read_node(const json& j, const std::string& field, int index) {
@@ -299,7 +350,7 @@ class GraphReader {
       if (j["op"].is_string() && j["op"].get<std::string>() == s.name) spec = &s;
     }
     if (!spec) {
-      if (j["op"] == "bump" || j["op"] == "environment")
+      if (j["op"] == "environment")
         fail(field + ".op", "'" + j["op"].get<std::string>() + "' is not supported by the renderer yet");
       fail(field + ".op", "expected one of {" + join(names) + "}, got " + got(j["op"]));
     }
@@ -350,11 +401,12 @@ class GraphReader {
         choice(j["operation"], field_of("operation"), kVectorMathOpNames, &node.mode);
         break;
       case GraphOp::ColorRamp: {
-        if (take("color_mode")) choice(j["color_mode"], field_of("color_mode"), {"rgb"});
-        const std::string interpolation =
-            take("interpolation") ? choice(j["interpolation"], field_of("interpolation"),
-                                           {"constant", "linear", "ease"})
-                                  : "linear";
+        int interpolation = int(RampInterpolation::Linear), color_mode = 0, hue = 0;
+        if (take("color_mode")) choice(j["color_mode"], field_of("color_mode"), kRampColorModeNames, &color_mode);
+        if (take("hue_interpolation"))
+          choice(j["hue_interpolation"], field_of("hue_interpolation"), kRampHueNames, &hue);
+        if (take("interpolation"))
+          choice(j["interpolation"], field_of("interpolation"), kRampInterpolationNames, &interpolation);
         if (!take("stops") || !j["stops"].is_array() || j["stops"].empty())
           fail(field_of("stops"), "expected [[pos, r, g, b, a], ...] (at least one stop)");
         std::vector<std::array<float, 5>> stops;
@@ -368,7 +420,8 @@ class GraphReader {
         }
         try {
           node.index = int(g_->ramps.size());
-          g_->ramps.push_back(color_ramp_table(stops, interpolation));
+          g_->ramps.push_back(color_ramp_table(stops, RampInterpolation(interpolation),
+                                               RampColorMode(color_mode), RampHue(hue)));
         } catch (const GraphFieldError&) {
           throw;
         } catch (const ParameterError& e) {
@@ -379,6 +432,9 @@ class GraphReader {
       case GraphOp::NormalMap:
         if (take("space")) choice(j["space"], field_of("space"), {"tangent"});
         node.index = take("map") ? integer(j["map"], field_of("map"), 0, 7) : 0;
+        break;
+      case GraphOp::Bump:
+        node.flag = take("invert") && boolean(j["invert"], field_of("invert"));
         break;
       default:
         break;
@@ -411,6 +467,13 @@ class GraphReader {
         node.in[i].constant = in.default_value;
       }
     }
+    if (spec->op == GraphOp::Bump) {
+      // The height again at the two offset points: copies of the nodes it depends on that
+      // read the surface (Cycles compiles the height sub-graph three times the same way).
+      node.in[4] = offset_copy(node.in[2], 1, field_of("height"));
+      node.in[5] = offset_copy(node.in[2], 2, field_of("height"));
+      g_->reads_offsets = true;
+    }
     node_of_.push_back(g_->nodes.size());
     NodeOutputs outs;
     outs.spec = spec;
@@ -432,9 +495,22 @@ class GraphReader {
   void read_closure(const json& j, const std::string& field, int before) {
     if (!j.is_object() || !j.contains("model"))
       fail(field, "expected a closure object with \"model\", got " + got(j));
-    only_keys(j, field, {"model", "weight", "params", "normal", "name"});
     if (!j["model"].is_string()) fail(field + ".model", "expected a model name, got " + got(j["model"]));
     const std::string name = j["model"].get<std::string>();
+    if (name == "holdout") {
+      // Not a BSDF: its weight makes the pixel transparent (camera rays) and it reflects nothing.
+      only_keys(j, field, {"model", "weight", "params", "name"});
+      if (j.contains("params") && !(j["params"].is_object() && j["params"].empty()))
+        fail(field + ".params", "a holdout has no parameters, got " + got(j["params"]));
+      GraphInput w;
+      w.constant = grey(1.0f);
+      if (j.contains("weight")) w = read_value(j["weight"], field + ".weight", Kind::Color, before);
+      if (w.reg < 0 && !finite_nonnegative(RGB(w.constant.x, w.constant.y, w.constant.z)))
+        fail(field + ".weight", "must be in [0, inf) per channel, got " + got(j["weight"]));
+      g_->holdouts.push_back(w);
+      return;
+    }
+    only_keys(j, field, {"model", "weight", "params", "normal", "tangent", "rotation", "name"});
     GraphClosure c;
     c.model = find_model(name);
     if (!c.model) {
@@ -496,10 +572,30 @@ class GraphReader {
       for (size_t i = 0; i < c.params.size(); ++i)
         if (c.params[i].reg < 0) c.params[i].constant = Vec3(c.constants[i].x, c.constants[i].y, c.constants[i].z);
     }
+    // Cycles' CLOSURE_IS_BSDF_DIFFUSE closures among the registry's models (Diffuse, Oren–Nayar,
+    // Translucent); Principled's diffuse and sheen lobes are inside one model and are not.
+    for (const char* diffuse : {"lambertian", "oren_nayar", "cycles_oren_nayar",
+                                "lambertian_transmission", "cycles_translucent"})
+      c.diffuse_closure = c.diffuse_closure || name == diffuse;
     if (j.contains("normal")) {
       const GraphInput n = read_value(j["normal"], field + ".normal", Kind::Vector, before);
       if (n.reg < 0) fail(field + ".normal", "expected a node reference (a normal_map or bump output)");
       c.normal_reg = n.reg;
+    }
+    if (j.contains("tangent")) {
+      c.tangent = read_value(j["tangent"], field + ".tangent", Kind::Vector, before);
+      c.has_tangent = true;
+    }
+    if (j.contains("rotation")) c.rotation = read_value(j["rotation"], field + ".rotation", Kind::Float, before);
+    // Anisotropic closures are oriented by Cycles' default tangent unless given their own.
+    for (const char* key : {"anisotropy", "anisotropic"})
+      if (params.contains(key))
+        c.anisotropic = c.anisotropic || !params[key].is_number() || params[key].get<double>() != 0.0;
+    if (c.oriented() && !c.has_tangent && g_->default_tangent_reg < 0) {
+      g_->default_tangent_reg = next_register_++;
+      if (next_register_ > MaterialGraph::kMaxRegisters)
+        fail(field, "the graph needs more than " + std::to_string(MaterialGraph::kMaxRegisters) +
+                        " registers");
     }
     g_->closures.push_back(std::move(c));
   }
@@ -509,6 +605,9 @@ class GraphReader {
   std::shared_ptr<MaterialGraph> g_ = std::make_shared<MaterialGraph>();
   std::vector<NodeOutputs> outputs_;  // per file node
   std::vector<size_t> node_of_;       // file node → program node
+  std::vector<size_t> register_owner_;  // register → program node
+  std::vector<int> output_count_;       // program node → its number of registers
+  std::vector<size_t> original_;        // program node → the node it copies (itself if none)
   size_t node_count_ = 0, total_nodes_ = 0;
   int next_register_ = 0;
 };

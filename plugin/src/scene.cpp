@@ -107,7 +107,20 @@ void Scene::add_graph_attributes(const MeshView& m, const std::string& who, Stor
     require_finite(m.object_to_world, 1, 12, who + ": object_to_world");
     if (!invert_affine(m.object_to_world, &s.world_to_object))
       throw ParameterError(who + ": object_to_world is singular (no object coordinates)");
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) s.object_linear[size_t(3 * r + c)] = m.object_to_world[4 * r + c];
   }
+  // Tangents arrive in world space (moved with the mesh); normal maps work in object space,
+  // as Cycles does, so they are taken back once here.
+  const float* w = s.world_to_object.data();
+  for (std::vector<float>& tangents : s.tangents)
+    for (size_t c = 0; c < tangents.size() / 4; ++c) {
+      float* v = &tangents[4 * c];
+      const float x = v[0], y = v[1], z = v[2];
+      v[0] = w[0] * x + w[1] * y + w[2] * z;
+      v[1] = w[4] * x + w[5] * y + w[6] * z;
+      v[2] = w[8] * x + w[9] * y + w[10] * z;
+    }
   Vec3 location, size;
   if (m.texture_space) {
     require_finite(m.texture_space, 1, 6, who + ": texture_space");
@@ -150,6 +163,9 @@ uint32_t Scene::add_material(Material material) {
     material.emission = material.graph->emission_is_constant()
                             ? material.graph->emitted(nullptr)
                             : RGB(0.0f);
+    const RGB& e = material.emission;
+    signed_emission_ = signed_emission_ || !material.graph->emission_is_constant() ||
+                       e.r < 0.0f || e.g < 0.0f || e.b < 0.0f;
   }
   float eta = 0.0f;
   if (material.graph && (material.graph->flags() & kTransmission)) eta = graph_eta(*material.graph);
@@ -489,6 +505,35 @@ Vec3 Scene::generated(const Hit& hit, const Vec3& p) const {
   const Vec3 d = object_position(hit, p) - m.texspace_location;
   return {d.x * m.texspace_inv_size.x * 0.5f + 0.5f, d.y * m.texspace_inv_size.y * 0.5f + 0.5f,
           d.z * m.texspace_inv_size.z * 0.5f + 0.5f};
+}
+
+Vec3 Scene::normal_to_object(const Hit& hit, const Vec3& n) const {
+  const std::array<float, 9>& a = meshes_[hit.mesh].object_linear;  // Aᵀ n
+  return {a[0] * n.x + a[3] * n.y + a[6] * n.z, a[1] * n.x + a[4] * n.y + a[7] * n.z,
+          a[2] * n.x + a[5] * n.y + a[8] * n.z};
+}
+
+Vec3 Scene::normal_to_world(const Hit& hit, const Vec3& n) const {
+  const std::array<float, 12>& w = meshes_[hit.mesh].world_to_object;  // (A⁻¹)ᵀ n
+  return {w[0] * n.x + w[4] * n.y + w[8] * n.z, w[1] * n.x + w[5] * n.y + w[9] * n.z,
+          w[2] * n.x + w[6] * n.y + w[10] * n.z};
+}
+
+Hit Scene::offset_hit(const Hit& hit, const Vec3& dp) const {
+  const StoredMesh& m = meshes_[hit.mesh];
+  const uint32_t* t = &m.indices[3 * size_t(hit.triangle)];
+  const Vec3 p0 = load3(m.positions, t[0]);
+  const Vec3 e1 = load3(m.positions, t[1]) - p0, e2 = load3(m.positions, t[2]) - p0;
+  // dp = e1·d1 + e2·d2 in the least-squares sense (Cramer's rule on the normal equations).
+  const float a = dot(e1, e1), b = dot(e1, e2), c = dot(e2, e2);
+  const float r1 = dot(dp, e1), r2 = dot(dp, e2);
+  const float det = a * c - b * b;
+  Hit moved = hit;
+  if (std::fabs(det) > 1e-30f) {
+    moved.b1 += (c * r1 - b * r2) / det;
+    moved.b2 += (a * r2 - b * r1) / det;
+  }
+  return moved;
 }
 
 bool Scene::smooth_triangle(const Hit& hit, SmoothTriangle* tri) const {

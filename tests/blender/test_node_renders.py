@@ -122,22 +122,83 @@ def _normal_texture(tmp_path):
     return image
 
 
-def test_a_normal_map_matches_cycles(tmp_path):
-    # On a glossy closure: Cycles also dims diffuse closures with a perturbed normal by its
-    # bump shadowing term (kernel/closure/bsdf.h), which the renderer does not apply yet.
+def _scale_object(scene, scale):
+    """Scales the plane object by `scale` and its mesh by the inverse: the same surface in
+    world space, whose object-space tangents must go through the object matrix."""
+    plane = bpy.data.objects["plane"]
+    for vertex in plane.data.vertices:
+        vertex.co = (vertex.co.x / scale[0], vertex.co.y / scale[1], vertex.co.z)
+    plane.scale = scale
+
+
+# On Diffuse, Cycles dims light at grazing angles to the perturbed normal by its bump
+# shadowing term (kernel/closure/bsdf.h); on Glossy it does not.
+@pytest.mark.parametrize("bsdf", ["ShaderNodeBsdfGlossy", "ShaderNodeBsdfDiffuse"])
+@pytest.mark.parametrize("scale", [(1.0, 1.0, 1.0), (2.0, 0.5, 1.0)], ids=["unscaled", "scaled"])
+def test_a_normal_map_matches_cycles(bsdf, scale, tmp_path):
     tree = Tree("normal mapped")
-    glossy = tree.surface(tree.add("ShaderNodeBsdfGlossy", Color=(0.8, 0.6, 0.4, 1.0),
-                                   Roughness=0.6))
+    closure = tree.surface(tree.add(bsdf, Color=(0.8, 0.6, 0.4, 1.0), Roughness=0.6))
     normal_map = tree.add("ShaderNodeNormalMap", Strength=0.8)
     image = tree.add("ShaderNodeTexImage")
     image.image, image.interpolation = _normal_texture(tmp_path), "Closest"
     tree.link(image.outputs["Color"], normal_map.inputs["Color"])
-    tree.link(normal_map.outputs[0], glossy.inputs["Normal"])
+    tree.link(normal_map.outputs[0], closure.inputs["Normal"])
     scene = _camera_scene(tree.material, tmp_path)
+    _scale_object(scene, scale)
     ours = _render(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
+    assert engine.last_error == ""
     cycles = _render(scene, "CYCLES", str(tmp_path / "cycles.exr"))
     assert np.ptp(cycles) > 0.05  # the normal map does vary the shading
     np.testing.assert_allclose(ours, cycles, rtol=5e-3, atol=1e-4)
+
+
+def _math_node(tree, operation):
+    node = tree.add("ShaderNodeMath")
+    node.operation = operation
+    return node
+
+
+def _facets(tree, slope_u, slope_v):
+    """A height of two planar facets meeting at u = ½: slope_u·|u − ½| + slope_v·v."""
+    _, u, v = _uv(tree)
+    centred = _math_node(tree, "SUBTRACT")
+    tree.link(u, centred.inputs[0])
+    centred.inputs[1].default_value = 0.5
+    folded = _math_node(tree, "ABSOLUTE")
+    tree.link(centred.outputs[0], folded.inputs[0])
+    height = _math_node(tree, "MULTIPLY_ADD")
+    tree.link(folded.outputs[0], height.inputs[0])
+    height.inputs[1].default_value = slope_u
+    slope = _math_node(tree, "MULTIPLY")
+    tree.link(v, slope.inputs[0])
+    slope.inputs[1].default_value = slope_v
+    tree.link(slope.outputs[0], height.inputs[2])
+    return height.outputs[0]
+
+
+def test_a_bump_matches_cycles(tmp_path):
+    """Two chained Bump nodes (strength, distance, invert, Normal input) on a Diffuse: Cycles
+    takes the height's differences over a pixel's footprint, we over a small fixed offset
+    (docs/material-graph.md), so the heights are planar facets, on which both are exact; the
+    pixels whose footprint reaches across the fold are left out."""
+    tree = Tree("bumped")
+    diffuse = tree.surface(tree.add("ShaderNodeBsdfDiffuse", Color=(0.8, 0.7, 0.6, 1.0)))
+    first = tree.add("ShaderNodeBump", Strength=0.7, Distance=0.3)
+    tree.link(_facets(tree, 1.2, 0.4), first.inputs["Height"])
+    second = tree.add("ShaderNodeBump", Strength=1.0, Distance=0.2)
+    second.invert = True
+    tree.link(_facets(tree, -0.5, 0.9), second.inputs["Height"])
+    tree.link(first.outputs[0], second.inputs["Normal"])
+    tree.link(second.outputs[0], diffuse.inputs["Normal"])
+    scene = _camera_scene(tree.material, tmp_path)
+    ours = _render(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
+    assert engine.last_error == ""
+    cycles = _render(scene, "CYCLES", str(tmp_path / "cycles.exr"))
+    columns = (np.arange(cycles.shape[1]) + 0.5) / cycles.shape[1]  # u at the pixel centres
+    away = np.abs(columns - 0.5) > 0.15
+    left, right = cycles[:, columns < 0.35], cycles[:, columns > 0.65]
+    assert abs(left.mean() - right.mean()) > 0.02  # the two facets do shade differently
+    np.testing.assert_allclose(ours[:, away], cycles[:, away], rtol=5e-3, atol=1e-4)
 
 
 def test_a_mix_shader_with_a_texture_factor_matches_cycles(tmp_path):
@@ -154,6 +215,24 @@ def test_a_mix_shader_with_a_texture_factor_matches_cycles(tmp_path):
     ours = _render(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
     cycles = _render(scene, "CYCLES", str(tmp_path / "cycles.exr"))
     assert np.ptp(cycles) > 0.05
+    np.testing.assert_allclose(ours, cycles, rtol=5e-3, atol=1e-4)
+
+
+def test_a_holdout_mix_matches_cycles(tmp_path):
+    """A Mix Shader of Holdout and Diffuse whose factor runs with u, on a transparent film: the
+    alpha is 1 − the holdout weight and the colour the diffuse's share, as in Cycles."""
+    tree = Tree("holdout")
+    mix = tree.surface(tree.add("ShaderNodeMixShader"))
+    _, u, _ = _uv(tree)
+    tree.link(u, mix.inputs["Fac"])
+    tree.link(tree.add("ShaderNodeHoldout").outputs[0], mix.inputs[1])
+    tree.link(tree.add("ShaderNodeBsdfDiffuse", Color=(0.9, 0.5, 0.2, 1.0)).outputs[0], mix.inputs[2])
+    scene = _camera_scene(tree.material, tmp_path)
+    scene.render.film_transparent = True
+    ours = render_rgba(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
+    assert engine.last_error == ""
+    cycles = render_rgba(scene, "CYCLES", str(tmp_path / "cycles.exr"))
+    assert np.ptp(cycles[..., 3]) > 0.5  # the alpha does run from opaque to transparent
     np.testing.assert_allclose(ours, cycles, rtol=5e-3, atol=1e-4)
 
 
@@ -175,14 +254,20 @@ def _math(tree):
     return node.outputs[0]
 
 
-def _mix_rgb(tree):
-    uv, u, _ = _uv(tree)
-    node = tree.add("ShaderNodeMixRGB")
-    node.blend_type = "OVERLAY"
-    node.inputs["Color1"].default_value = (0.2, 0.6, 0.4, 1.0)
-    tree.link(u, node.inputs["Fac"])
-    tree.link(uv, node.inputs["Color2"])
-    return node.outputs[0]
+def _mix_rgb(blend):
+    def build(tree):
+        uv, u, _ = _uv(tree)
+        node = tree.add("ShaderNodeMixRGB")
+        node.blend_type = blend
+        node.inputs["Color1"].default_value = (0.2, 0.6, 0.4, 1.0)
+        tree.link(u, node.inputs["Fac"])
+        tree.link(uv, node.inputs["Color2"])
+        return node.outputs[0]
+    return build
+
+
+MIX_BLENDS = ["OVERLAY", "DARKEN", "LIGHTEN", "DIFFERENCE", "DIVIDE", "DODGE", "BURN", "HUE",
+              "SATURATION", "VALUE", "COLOR", "SOFT_LIGHT", "LINEAR_LIGHT"]
 
 
 def _colour_op(bl_idname, **inputs):
@@ -202,12 +287,12 @@ def _swizzle(tree):
     return combine.outputs[0]
 
 
-def _ramp(interpolation):
+def _ramp(interpolation, color_mode="RGB", hue="NEAR"):
     def build(tree):
         _, u, _ = _uv(tree)
         node = tree.add("ShaderNodeValToRGB")
         ramp = node.color_ramp
-        ramp.interpolation = interpolation
+        ramp.interpolation, ramp.color_mode, ramp.hue_interpolation = interpolation, color_mode, hue
         ramp.elements[0].color = (0.9, 0.1, 0.1, 1.0)
         middle = ramp.elements.new(0.4)
         middle.color = (0.1, 0.8, 0.2, 1.0)
@@ -260,7 +345,7 @@ def _unified_mix(tree):
 
 VALUE_CASES = {
     "math_power": _math,
-    "mix_rgb_overlay": _mix_rgb,
+    **{f"mix_rgb_{blend.lower()}": _mix_rgb(blend) for blend in MIX_BLENDS},
     "invert": _colour_op("ShaderNodeInvert", Fac=0.7),
     "gamma": _colour_op("ShaderNodeGamma", Gamma=2.2),
     "bright_contrast": _colour_op("ShaderNodeBrightContrast", Bright=0.1, Contrast=0.3),
@@ -269,6 +354,12 @@ VALUE_CASES = {
     "color_ramp_linear": _ramp("LINEAR"),
     "color_ramp_constant": _ramp("CONSTANT"),
     "color_ramp_ease": _ramp("EASE"),
+    "color_ramp_cardinal": _ramp("CARDINAL"),
+    "color_ramp_b_spline": _ramp("B_SPLINE"),
+    "color_ramp_hsv_far": _ramp("LINEAR", "HSV", "FAR"),
+    "color_ramp_hsv_ccw": _ramp("LINEAR", "HSV", "CCW"),
+    "color_ramp_hsl_near": _ramp("EASE", "HSL", "NEAR"),
+    "color_ramp_hsl_cw": _ramp("CONSTANT", "HSL", "CW"),
     "fresnel": _view_factor("ShaderNodeFresnel", 0, IOR=1.5),
     "layer_weight_facing": _view_factor("ShaderNodeLayerWeight", "Facing", Blend=0.3),
     "generated_mapping": _mapped_generated,

@@ -45,7 +45,7 @@ TEST(GraphOps, MixRGBBlendsPerChannel) {
   expect_vec(mix_rgb(MixBlend::Mix, 1.7f, kA, kB, false), kB);
   expect_vec(mix_rgb(MixBlend::Add, 1.0f, kA, kB, true), Vec3(0.9f, 0.7f, 1.0f));
   expect_vec(mix_rgb(MixBlend::Divide, 1.0f, kA, Vec3(0, 0, 0), false), kA);
-  EXPECT_EQ(kMixBlendNames.size(), size_t(MixBlend::LinearLight) + 1);
+  EXPECT_EQ(kMixBlendNames.size(), size_t(MixBlend::Color) + 1);
 }
 
 TEST(GraphOps, MathMatchesStdAndCyclesSafeForms) {
@@ -122,7 +122,7 @@ TEST(GraphOps, ColorRampTableAndLookup) {
   const std::vector<std::array<float, 5>> stops = {{0.2f, 1, 0, 0, 1}, {0.8f, 0, 0, 1, 0}};
   Vec3 c;
   float a = 0.0f;
-  const ColorRampTable linear = color_ramp_table(stops, "linear");
+  const ColorRampTable linear = color_ramp_table(stops, RampInterpolation::Linear);
   color_ramp(linear, 0.5f, &c, &a);  // halfway between the stops
   expect_vec(c, Vec3(0.5f, 0.0f, 0.5f), 2e-3f);
   EXPECT_NEAR(a, 0.5f, 2e-3f);
@@ -135,18 +135,143 @@ TEST(GraphOps, ColorRampTableAndLookup) {
   auto band = [](float p) { return (0.8f - p) / 0.6f; };  // red weight on the linear segment
   color_ramp(linear, 0.5f * (x + x1), &c, &a);
   EXPECT_NEAR(c.x, 0.5f * (band(x) + band(x1)), 1e-5f);
-  const ColorRampTable constant = color_ramp_table(stops, "constant");
+  const ColorRampTable constant = color_ramp_table(stops, RampInterpolation::Constant);
   color_ramp(constant, 0.79f, &c, &a);
   expect_vec(c, Vec3(1, 0, 0));
   color_ramp(constant, 0.81f, &c, &a);
   expect_vec(c, Vec3(0, 0, 1));
-  const ColorRampTable ease = color_ramp_table(stops, "ease");
+  const ColorRampTable ease = color_ramp_table(stops, RampInterpolation::Ease);
   const float e = 128.0f / 255.0f;  // a table entry
   const float f = (e - 0.8f) / (0.2f - 0.8f);                  // towards the left stop
   color_ramp(ease, e, &c, &a);
   EXPECT_NEAR(c.x, 3 * f * f - 2 * f * f * f, 1e-5f);
-  EXPECT_THROW(color_ramp_table(stops, "b_spline"), ParameterError);
-  EXPECT_THROW(color_ramp_table({{0.5f, 1, 1, 1, 1}, {0.1f, 0, 0, 0, 1}}, "linear"), ParameterError);
+  EXPECT_THROW(color_ramp_table({{0.5f, 1, 1, 1, 1}, {0.1f, 0, 0, 0, 1}}, RampInterpolation::Linear),
+               ParameterError);
+  EXPECT_THROW(color_ramp_table({}, RampInterpolation::Linear), ParameterError);
+}
+
+// Cardinal and B-spline bands weigh four stops with Blender's key_curve_position_weights
+// (written out here as the cubic polynomials of the Blender manual's curve types).
+TEST(GraphOps, ColorRampSplines) {
+  const std::vector<std::array<float, 5>> stops = {
+      {0.0f, 0, 0, 0, 1}, {0.25f, 1, 0, 0, 1}, {0.5f, 0, 1, 0, 1}, {1.0f, 0, 0, 1, 1}};
+  Vec3 c;
+  float a = 0.0f;
+  const float e = 96.0f / 255.0f;  // between the stops at 0.25 and 0.5
+  const float t = (e - 0.5f) / (0.25f - 0.5f);  // 0 at the right stop, 1 at the left
+  // Order from right to left: the stop past the right one, right, left, the one before left.
+  const float red[4] = {0, 0, 1, 0}, green[4] = {0, 1, 0, 0}, blue[4] = {1, 0, 0, 0};
+  auto weigh = [](const float w[4], const float v[4]) {
+    return std::min(std::max(w[0] * v[0] + w[1] * v[1] + w[2] * v[2] + w[3] * v[3], 0.0f), 1.0f);
+  };
+  const float fc = 0.71f;
+  const float cardinal[4] = {-fc * t * t * t + 2 * fc * t * t - fc * t,
+                             (2 - fc) * t * t * t + (fc - 3) * t * t + 1,
+                             (fc - 2) * t * t * t + (3 - 2 * fc) * t * t + fc * t, fc * t * t * t - fc * t * t};
+  color_ramp(color_ramp_table(stops, RampInterpolation::Cardinal), e, &c, &a);
+  EXPECT_NEAR(c.x, weigh(cardinal, red), 1e-5f);
+  EXPECT_NEAR(c.y, weigh(cardinal, green), 1e-5f);
+  EXPECT_NEAR(c.z, weigh(cardinal, blue), 1e-5f);
+  const float bspline[4] = {(1 - t) * (1 - t) * (1 - t) / 6, (3 * t * t * t - 6 * t * t + 4) / 6,
+                            (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6, t * t * t / 6};
+  color_ramp(color_ramp_table(stops, RampInterpolation::BSpline), e, &c, &a);
+  EXPECT_NEAR(c.x, weigh(bspline, red), 1e-5f);
+  EXPECT_NEAR(c.y, weigh(bspline, green), 1e-5f);
+  EXPECT_NEAR(c.z, weigh(bspline, blue), 1e-5f);
+  // A cardinal spline passes through its stops; B-spline does not (it smooths them).
+  color_ramp(color_ramp_table(stops, RampInterpolation::Cardinal), 0.5f + 0.5f / 255.0f, &c, &a);
+  EXPECT_NEAR(c.y, 1.0f, 2e-2f);
+}
+
+// HSV and HSL bands interpolate hue the short way round (Near) or as asked, saturation and
+// value/lightness linearly; they ignore ease and spline interpolation.
+TEST(GraphOps, ColorRampHueModes) {
+  // Red (hue 0) to blue (hue 2/3): the short way passes magenta (hue 5/6), the long way green.
+  const std::vector<std::array<float, 5>> stops = {{0.0f, 1, 0, 0, 1}, {1.0f, 0, 0, 1, 1}};
+  Vec3 c;
+  float a = 0.0f;
+  const float mid = 0.5f * (127.0f + 128.0f) / 255.0f;
+  color_ramp(color_ramp_table(stops, RampInterpolation::Linear, RampColorMode::HSV), mid, &c, &a);
+  expect_vec(c, Vec3(1, 0, 1), 2e-2f);  // hue 5/6 at half way
+  color_ramp(color_ramp_table(stops, RampInterpolation::Linear, RampColorMode::HSV, RampHue::Far),
+             mid, &c, &a);
+  expect_vec(c, Vec3(0, 1, 0.0f), 2e-2f);  // hue 1/3
+  color_ramp(color_ramp_table(stops, RampInterpolation::Ease, RampColorMode::HSV), 64.0f / 255.0f,
+             &c, &a);
+  const Vec3 linear_quarter = hsv_to_rgb(Vec3(1.0f - (64.0f / 255.0f) / 3.0f, 1.0f, 1.0f));
+  expect_vec(c, linear_quarter, 1e-5f);
+  // HSL: lightness ½ and saturation 1 for both; grey stops keep hue 0 and mix lightness.
+  color_ramp(color_ramp_table(stops, RampInterpolation::Linear, RampColorMode::HSL), mid, &c, &a);
+  expect_vec(c, Vec3(1, 0, 1), 2e-2f);
+  const Vec3 hsl = rgb_to_hsl(Vec3(0.2f, 0.4f, 0.8f));
+  EXPECT_NEAR(hsl.z, 0.5f, 1e-6f);
+  EXPECT_NEAR(hsl.y, 0.6f / (0.2f + 0.8f), 1e-6f);
+  expect_vec(hsl_to_rgb(hsl), Vec3(0.2f, 0.4f, 0.8f), 1e-6f);
+}
+
+TEST(GraphOps, MixRGBHsvAndDodgeBurnBlends) {
+  const float t = 0.3f;
+  for (int c = 0; c < 3; ++c) {
+    const float a = kA[c], b = kB[c];
+    const float dodge = std::min(a / (1 - t * b), 1.0f);
+    EXPECT_NEAR(mix_rgb(MixBlend::Dodge, t, kA, kB, false)[c], dodge, 1e-6f);
+    const float burn = std::min(std::max(1 - (1 - a) / (1 - t + t * b), 0.0f), 1.0f);
+    EXPECT_NEAR(mix_rgb(MixBlend::Burn, t, kA, kB, false)[c], burn, 1e-6f);
+  }
+  EXPECT_EQ(mix_rgb(MixBlend::Dodge, 1.0f, Vec3(0.5f, 0, 0.5f), Vec3(1, 1, 0.2f), false),
+            Vec3(1.0f, 0.0f, 0.5f / 0.8f));
+  const Vec3 ha = rgb_to_hsv(kA), hb = rgb_to_hsv(kB);
+  auto lerp = [](const Vec3& x, const Vec3& y, float f) { return x * (1 - f) + y * f; };
+  expect_vec(mix_rgb(MixBlend::Hue, t, kA, kB, false), lerp(kA, hsv_to_rgb(Vec3(hb.x, ha.y, ha.z)), t));
+  expect_vec(mix_rgb(MixBlend::Color, t, kA, kB, false),
+             lerp(kA, hsv_to_rgb(Vec3(hb.x, hb.y, ha.z)), t));
+  expect_vec(mix_rgb(MixBlend::Saturation, t, kA, kB, false),
+             hsv_to_rgb(Vec3(ha.x, (1 - t) * ha.y + t * hb.y, ha.z)));
+  expect_vec(mix_rgb(MixBlend::Value, t, kA, kB, false),
+             hsv_to_rgb(Vec3(ha.x, ha.y, (1 - t) * ha.z + t * hb.z)));
+  // A grey b has no hue to give; a grey a has no saturation to change.
+  expect_vec(mix_rgb(MixBlend::Hue, t, kA, Vec3(0.5f, 0.5f, 0.5f), false), kA);
+  expect_vec(mix_rgb(MixBlend::Saturation, t, Vec3(0.5f, 0.5f, 0.5f), kB, false), Vec3(0.5f, 0.5f, 0.5f));
+}
+
+// Bump with a linear height h: Cycles' finite differences give normalize(N − distance·∇h)
+// whatever the offsets, and strength blends towards N.
+TEST(GraphOps, BumpOfALinearHeight) {
+  const Vec3 n(0, 0, 1), grad(0.3f, -0.2f, 0.0f);
+  BumpInputs in;
+  in.normal = n;
+  in.height = 0.7f;
+  for (const float eps : {1e-3f, 1e-2f}) {
+    in.dpdx = Vec3(eps, 0, 0);
+    in.dpdy = Vec3(0, -eps, 0);  // left-handed offsets: det < 0 and the sign compensates
+    in.height_x = in.height + dot(grad, in.dpdx);
+    in.height_y = in.height + dot(grad, in.dpdy);
+    in.distance = 0.5f;
+    const Vec3 view(0, 0, 1);
+    expect_vec(bump_normal(in, n, view), normalize(n - grad * 0.5f), 1e-4f);
+    in.invert = true;
+    expect_vec(bump_normal(in, n, view), normalize(n + grad * 0.5f), 1e-4f);
+    in.invert = false;
+    in.strength = 0.25f;
+    expect_vec(bump_normal(in, n, view),
+               normalize(normalize(n - grad * 0.5f) * 0.25f + n * 0.75f), 1e-4f);
+    in.strength = 1.0f;
+  }
+}
+
+// ensure_valid_reflection leaves a normal whose mirror direction is above the surface, and
+// tilts one that would reflect below it until the reflection meets Cycles' threshold.
+TEST(GraphOps, EnsureValidReflection) {
+  const Vec3 ng(0, 0, 1);
+  const Vec3 view = normalize(Vec3(1, 0, 0.2f));
+  const Vec3 mild = normalize(Vec3(0.1f, 0, 1));
+  expect_vec(ensure_valid_reflection(ng, view, mild), mild);
+  const Vec3 steep = normalize(Vec3(-1.5f, 0, 1));  // tilted away: reflects below the surface
+  const Vec3 fixed = ensure_valid_reflection(ng, view, steep);
+  EXPECT_NEAR(length(fixed), 1.0f, 1e-5f);
+  const Vec3 r = fixed * (2 * dot(fixed, view)) - view;
+  EXPECT_NEAR(dot(r, ng), std::min(0.9f * view.z, 0.01f), 1e-4f);
+  EXPECT_NEAR(fixed.y, 0.0f, 1e-6f);  // stays in the plane of N and Ng
 }
 
 TEST(GraphOps, FresnelAndLayerWeight) {

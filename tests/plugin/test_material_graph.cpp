@@ -3,6 +3,7 @@
 // and a Mix of two closures with a texture factor renders as the per-pixel mix of the two.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -43,7 +44,7 @@ std::string graph_error(const json& graph) {
 
 // A floor quad filling the view of a camera looking straight down, lit by a point light.
 std::vector<float> render_floor(const std::shared_ptr<const MaterialGraph>& graph,
-                                const BxDFPtr& plain) {
+                                const BxDFPtr& plain, bool transparent = false) {
   Scene scene;
   Material m;
   if (graph) m.graph = graph;
@@ -61,6 +62,7 @@ std::vector<float> render_floor(const std::shared_ptr<const MaterialGraph>& grap
   s.max_bounces = 0;
   s.filter = FilterType::PixelCenter;
   s.threads = 1;
+  s.transparent_background = transparent;
   return render_scene(scene, c, s).rgba();
 }
 
@@ -225,4 +227,174 @@ TEST(MaterialGraph, MeshAttributesUVMapsTangentsObjectAndGenerated) {
   bad.add_material(Material{{make("lambertian")}, RGB(0.0f)});
   m.object_to_world = {0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   EXPECT_THROW(bad.add_mesh(m.view()), ParameterError);
+}
+
+namespace {
+
+// The quad [-1, 1]² at z = 0 (two triangles) with UV map 0 = ((x + 1)/2, (y + 1)/2) per corner.
+Mesh uv_quad() {
+  Mesh m;
+  m.positions = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  m.uv_maps = {{0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1}};
+  return m;
+}
+
+}  // namespace
+
+// A bump whose height is linear in UV: the height sub-program is re-run at the offset points
+// (its UV node copied), so the normal is normalize(N − distance·∇h) on both triangles.
+TEST(MaterialGraph, BumpReevaluatesTheHeightAtOffsetPoints) {
+  TextureStore store;
+  const json graph = {
+      {"nodes", {{{"op", "uv"}},
+                 {{"op", "separate"}, {"vector", {{"node", 0}}}},
+                 {{"op", "math"}, {"operation", "multiply"}, {"a", {{"node", 1}, {"out", "x"}}}, {"b", 0.5}},
+                 {{"op", "bump"}, {"height", {{"node", 2}}}, {"distance", 0.2}},
+                 {{"op", "bump"}, {"height", {{"node", 2}}}, {"distance", 0.2}, {"invert", true},
+                  {"strength", 0.5}, {"normal", {{"node", 3}}}}}},
+      {"closures", {{{"model", "lambertian"}, {"normal", {{"node", 3}}}}}}};
+  const auto g = read_material_graph(graph, "graph", "", store);
+  EXPECT_TRUE(g->reads_offsets);
+  Scene scene;
+  scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+  scene.add_mesh(uv_quad().view());
+  scene.commit();
+  const Vec3 n(0, 0, 1);
+  // h = 0.5 u = 0.25 (x + 1): ∇h = (0.25, 0, 0).
+  const Vec3 bumped = normalize(n - Vec3(0.25f, 0, 0) * 0.2f);
+  std::vector<Vec3> registers(MaterialGraph::kMaxRegisters);
+  for (uint32_t triangle : {0u, 1u}) {
+    Hit hit;
+    hit.triangle = triangle;
+    hit.b1 = 0.3f;
+    hit.b2 = 0.4f;
+    const SurfacePoint sp = scene.surface_point(hit);
+    const ShadingContext ctx{&scene, &hit, sp.p, sp.ns, sp.ng, normalize(Vec3(0.1f, 0.2f, 1.0f)), false};
+    g->evaluate(ctx, registers.data());
+    const Vec3 got = registers[size_t(g->closures[0].normal_reg)];
+    EXPECT_NEAR(got.x, bumped.x, 2e-4f);
+    EXPECT_NEAR(got.y, bumped.y, 2e-4f);
+    EXPECT_NEAR(got.z, bumped.z, 2e-4f);
+  }
+  // A bump's height may not depend on a bump's normal (it would need offsets of offsets).
+  json nested = graph;
+  nested["nodes"].push_back({{"op", "fresnel"}, {"normal", {{"node", 3}}}});
+  nested["nodes"].push_back({{"op", "bump"}, {"height", {{"node", 5}}}});
+  EXPECT_EQ(graph_error(nested),
+            "graph.nodes[6].height: a bump's height cannot depend on another bump's normal");
+}
+
+// Tangents arrive in world space (moved with the mesh by the object matrix A); normal maps
+// read them in object space, as Cycles composes the mapped normal there, and move normals
+// between the spaces by Aᵀ and A⁻ᵀ.
+TEST(MaterialGraph, TangentsAndNormalsUnderANonUniformScale) {
+  Scene scene;
+  scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+  Mesh m = uv_quad();
+  for (size_t i = 0; i < m.positions.size(); i += 3) m.positions[i] *= 2.0f;  // scale x by 2
+  m.object_to_world = {2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  m.tangents = {std::vector<float>(24, 0.0f)};
+  for (size_t c = 0; c < 6; ++c) {
+    m.tangents[0][4 * c] = 1.2f;  // world (1.2, 0.8, 0) = A (0.6, 0.8, 0), sign 1
+    m.tangents[0][4 * c + 1] = 0.8f;
+    m.tangents[0][4 * c + 3] = 1.0f;
+  }
+  scene.add_mesh(m.view());
+  scene.commit();
+  Hit hit;
+  hit.b1 = 0.2f;
+  hit.b2 = 0.3f;
+  Vec3 t;
+  float sign = 0.0f;
+  ASSERT_TRUE(scene.tangent(hit, 0, &t, &sign));
+  EXPECT_FLOAT_EQ(t.x, 0.6f);
+  EXPECT_FLOAT_EQ(t.y, 0.8f);
+  EXPECT_FLOAT_EQ(t.z, 0.0f);
+  EXPECT_FLOAT_EQ(sign, 1.0f);
+  const Vec3 n(0.3f, 0.4f, 0.5f);
+  const Vec3 to_object = scene.normal_to_object(hit, n), to_world = scene.normal_to_world(hit, n);
+  EXPECT_FLOAT_EQ(to_object.x, 0.6f);  // Aᵀ n
+  EXPECT_FLOAT_EQ(to_object.y, 0.4f);
+  EXPECT_FLOAT_EQ(to_world.x, 0.15f);  // A⁻ᵀ n
+  EXPECT_FLOAT_EQ(to_world.z, 0.5f);
+}
+
+// Cycles lets a negative Emission take light away: a graph's emission keeps its sign, and the
+// camera sees it as it is (a black floor, so that only the emission shows).
+TEST(MaterialGraph, NegativeEmissionTakesLightAway) {
+  TextureStore store;
+  const json graph = {{"closures", {{{"model", "lambertian"}, {"params", {{"reflectance", 0.0}}}}}},
+                      {"emission", {-0.05, 0.0, 0.02}}};
+  const auto g = read_material_graph(graph, "graph", "", store);
+  const RGB e = g->emitted(nullptr);
+  EXPECT_EQ(e.r, -0.05f);
+  EXPECT_EQ(e.b, 0.02f);
+  const std::vector<float> image = render_floor(g, nullptr);
+  int floor = 0;
+  for (size_t i = 0; i < image.size(); i += 4) {
+    if (image[i] == 0.0f && image[i + 2] == 0.0f) continue;  // background
+    ++floor;
+    EXPECT_FLOAT_EQ(image[i], -0.05f);
+    EXPECT_FLOAT_EQ(image[i + 2], 0.02f);
+  }
+  EXPECT_GT(floor, 100);
+}
+
+// Holdout (Cycles): the pixel turns transparent by the holdout weight on camera rays and the
+// holdout reflects nothing; a half holdout mixed with a diffuse keeps half of the diffuse.
+TEST(MaterialGraph, HoldoutMakesThePixelTransparent) {
+  TextureStore store;
+  const json diffuse = {{"closures", {{{"model", "lambertian"}, {"params", {{"reflectance", 0.8}}}}}}};
+  const json full = {{"closures", {{{"model", "holdout"}}}}};
+  const json half = {{"closures", {{{"model", "holdout"}, {"weight", 0.5}},
+                                   {{"model", "lambertian"}, {"weight", 0.5}, {"params", {{"reflectance", 0.8}}}}}}};
+  const auto lit = render_floor(read_material_graph(diffuse, "graph", "", store), nullptr, true);
+  const auto gone = render_floor(read_material_graph(full, "graph", "", store), nullptr, true);
+  const auto halved = render_floor(read_material_graph(half, "graph", "", store), nullptr, true);
+  int floor = 0;
+  for (size_t i = 0; i < lit.size(); i += 4) {
+    if (lit[i + 3] == 0.0f) continue;  // background
+    ++floor;
+    EXPECT_EQ(gone[i], 0.0f);
+    EXPECT_EQ(gone[i + 3], 0.0f);
+    EXPECT_FLOAT_EQ(halved[i + 3], 0.5f);
+    EXPECT_NEAR(halved[i], 0.5f * lit[i], 1e-6f);
+  }
+  EXPECT_GT(floor, 100);
+  EXPECT_EQ(graph_error({{"closures", {{{"model", "holdout"}, {"params", json::object()}}}}}),
+            "(accepted)");
+  EXPECT_EQ(graph_error({{"closures", {{{"model", "holdout"}, {"params", {{"color", 1}}}}}}}),
+            "graph.closures[0].params: a holdout has no parameters, got {\"color\":1}");
+}
+
+// Anisotropic orientation: Rotation turns the tangent about the normal (a quarter turn of the
+// point's tangent x is the tangent y), and a Tangent value replaces the point's.
+TEST(MaterialGraph, AnisotropicTangentAndRotation) {
+  TextureStore store;
+  auto glossy = [](const json& extra) {
+    json c = {{"model", "cycles_glossy"},
+              {"params", {{"distribution", "ggx"}, {"roughness", 0.4}, {"anisotropy", 0.8}}}};
+    for (auto it = extra.begin(); it != extra.end(); ++it) c[it.key()] = it.value();
+    return json{{"closures", {c}}};
+  };
+  const Vec3 n(0, 0, 1), t(1, 0, 0);
+  auto f = [&](const json& graph) {
+    const auto g = read_material_graph(graph, "graph", "", store);
+    std::vector<Vec3> registers(MaterialGraph::kMaxRegisters);
+    // Without a Tangent value, the closure reads Cycles' default tangent (evaluate fills it).
+    EXPECT_GE(g->default_tangent_reg, graph["closures"][0].contains("tangent") ? -1 : 0);
+    if (g->default_tangent_reg >= 0) registers[size_t(g->default_tangent_reg)] = t;
+    ClosureArena arena;
+    BSDF bsdf(Frame::from_normal_tangent(n, Vec3(0, 1, 0)), n);  // not the closure's frame
+    g->add_closures(registers.data(), t, arena, bsdf);
+    return bsdf.f(normalize(Vec3(0.3f, 0.5f, 1.0f)), normalize(Vec3(-0.6f, 0.1f, 1.0f)));
+  };
+  const RGB plain = f(glossy(json::object()));
+  const RGB turned = f(glossy({{"rotation", 0.25}}));
+  const RGB along_y = f(glossy({{"tangent", {0.0, 1.0, 0.0}}}));
+  EXPECT_GT(std::fabs(plain.r - turned.r), 1e-3f * plain.r);  // anisotropy shows
+  EXPECT_NEAR(turned.r, along_y.r, 1e-5f * along_y.r);
+  const RGB full_turn = f(glossy({{"rotation", 1.0}}));
+  EXPECT_NEAR(full_turn.r, plain.r, 1e-4f * plain.r);
 }

@@ -39,7 +39,10 @@ class BSDF {
 
   // Adds weight · component, in `frame` (world space; null: the BSDF's shading frame). Throws
   // ParameterError past kMaxComponents, for a null pointer or a negative/non-finite weight.
-  void add(const BxDF* component, const RGB& weight = RGB(1.0f), const Frame* frame = nullptr);
+  // `bump_shadowed`: the component is one of Cycles' diffuse closures, which Cycles darkens at
+  // grazing light by bump_shadowing_term when its normal differs from the shading normal.
+  void add(const BxDF* component, const RGB& weight = RGB(1.0f), const Frame* frame = nullptr,
+           bool bump_shadowed = false);
 
   int num_components() const { return count_; }
   // Components whose every flag is in `mask` (BxDF::matches).
@@ -81,6 +84,7 @@ class BSDF {
   RGB weights_[kMaxComponents];
   float sample_weights_[kMaxComponents] = {};
   Frame frames_[kMaxComponents];
+  bool bump_shadowed_[kMaxComponents] = {};
   int count_ = 0;
 };
 

@@ -1,5 +1,6 @@
 // Colour ops of material graphs: Mix RGB, Invert, Gamma, Bright/Contrast, Hue/Saturation/Value
-// (Cycles 3.4's svm/color_util.h, invert.h, math_util.h, hsv.h and util/color.h).
+// (Cycles 3.4's svm/color_util.h, invert.h, math_util.h, hsv.h and util/color.h), and the HSL
+// conversion of Blender's colour band.
 #include <algorithm>
 #include <cmath>
 
@@ -9,7 +10,8 @@ namespace bxdf::render {
 
 const std::vector<std::string> kMixBlendNames = {
     "mix",        "add",     "multiply", "screen",     "overlay",      "subtract",
-    "divide",     "difference", "darken", "lighten",   "soft_light",   "linear_light"};
+    "divide",     "difference", "darken", "lighten",   "soft_light",   "linear_light",
+    "dodge",      "burn",    "hue",      "saturation", "value",        "color"};
 
 namespace {
 
@@ -25,6 +27,24 @@ float overlay_channel(float t, float a, float b) {
 }
 float divide_channel(float t, float a, float b) {
   return b != 0.0f ? (1.0f - t) * a + t * a / b : a;
+}
+float dodge_channel(float t, float a, float b) {
+  if (a == 0.0f) return a;
+  const float d = 1.0f - t * b;
+  return d <= 0.0f ? 1.0f : std::min(a / d, 1.0f);
+}
+float burn_channel(float t, float a, float b) {
+  const float d = 1.0f - t + t * b;
+  return d <= 0.0f ? 0.0f : saturate(1.0f - (1.0f - a) / d);
+}
+// svm_mix_hue and svm_mix_color: a's hue (and saturation) replaced by b's, unless b is grey.
+Vec3 mix_hue(float t, const Vec3& a, const Vec3& b, bool with_saturation) {
+  const Vec3 hsv_b = rgb_to_hsv(b);
+  if (hsv_b.y == 0.0f) return a;
+  Vec3 hsv_a = rgb_to_hsv(a);
+  hsv_a.x = hsv_b.x;
+  if (with_saturation) hsv_a.y = hsv_b.y;
+  return lerp(a, hsv_to_rgb(hsv_a), t);
 }
 
 }  // namespace
@@ -63,6 +83,30 @@ Vec3 mix_rgb(MixBlend blend, float fac, const Vec3& a, const Vec3& b, bool clamp
       break;
     }
     case MixBlend::LinearLight: out = a + (b * 2.0f - one) * t; break;
+    case MixBlend::Dodge:
+      out = {dodge_channel(t, a.x, b.x), dodge_channel(t, a.y, b.y), dodge_channel(t, a.z, b.z)};
+      break;
+    case MixBlend::Burn:
+      out = {burn_channel(t, a.x, b.x), burn_channel(t, a.y, b.y), burn_channel(t, a.z, b.z)};
+      break;
+    case MixBlend::Hue: out = mix_hue(t, a, b, false); break;
+    case MixBlend::Color: out = mix_hue(t, a, b, true); break;
+    case MixBlend::Saturation: {
+      Vec3 hsv_a = rgb_to_hsv(a);
+      if (hsv_a.y == 0.0f) {
+        out = a;
+        break;
+      }
+      hsv_a.y = (1.0f - t) * hsv_a.y + t * rgb_to_hsv(b).y;
+      out = hsv_to_rgb(hsv_a);
+      break;
+    }
+    case MixBlend::Value: {
+      Vec3 hsv_a = rgb_to_hsv(a);
+      hsv_a.z = (1.0f - t) * hsv_a.z + t * rgb_to_hsv(b).z;
+      out = hsv_to_rgb(hsv_a);
+      break;
+    }
   }
   return clamp ? saturate(out) : out;
 }
@@ -114,6 +158,30 @@ Vec3 hsv_to_rgb(const Vec3& hsv) {
   if (i == 3.0f) return {p, q, v};
   if (i == 4.0f) return {t, p, v};
   return {v, p, q};
+}
+
+// Blender's rgb_to_hsl and hsl_to_rgb (blenlib/math_color.c), which its colour band uses.
+Vec3 rgb_to_hsl(const Vec3& rgb) {
+  const float cmax = std::max(rgb.x, std::max(rgb.y, rgb.z));
+  const float cmin = std::min(rgb.x, std::min(rgb.y, rgb.z));
+  const float l = std::min(1.0f, (cmax + cmin) * 0.5f);
+  if (cmax == cmin) return {0.0f, 0.0f, l};
+  const float d = cmax - cmin;
+  const float s = l > 0.5f ? d / (2.0f - cmax - cmin) : d / (cmax + cmin);
+  float h;
+  if (cmax == rgb.x) h = (rgb.y - rgb.z) / d + (rgb.y < rgb.z ? 6.0f : 0.0f);
+  else if (cmax == rgb.y) h = (rgb.z - rgb.x) / d + 2.0f;
+  else h = (rgb.x - rgb.y) / d + 4.0f;
+  return {h / 6.0f, s, l};
+}
+
+Vec3 hsl_to_rgb(const Vec3& hsl) {
+  const float h = hsl.x, s = hsl.y, l = hsl.z;
+  const float r = saturate(std::fabs(h * 6.0f - 3.0f) - 1.0f);
+  const float g = saturate(2.0f - std::fabs(h * 6.0f - 2.0f));
+  const float b = saturate(2.0f - std::fabs(h * 6.0f - 4.0f));
+  const float chroma = (1.0f - std::fabs(2.0f * l - 1.0f)) * s;
+  return {(r - 0.5f) * chroma + l, (g - 0.5f) * chroma + l, (b - 0.5f) * chroma + l};
 }
 
 Vec3 hsv(float hue, float saturation, float value, float fac, const Vec3& in) {

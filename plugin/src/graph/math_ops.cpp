@@ -131,11 +131,7 @@ void vector_math(VectorMathOp op, const Vec3& a, const Vec3& b, const Vec3& c, f
     case VectorMathOp::Distance: *value = length(a - b); break;
     case VectorMathOp::Length: *value = length(a); break;
     case VectorMathOp::Scale: *vector = a * scale; break;
-    case VectorMathOp::Normalize: {
-      const float l = length(a);
-      *vector = l != 0.0f ? a / l : a;  // Cycles' safe_normalize
-      break;
-    }
+    case VectorMathOp::Normalize: *vector = safe_normalize(a); break;
     case VectorMathOp::Absolute:
       *vector = Vec3(std::fabs(a.x), std::fabs(a.y), std::fabs(a.z));
       break;

@@ -3,21 +3,14 @@
 
 namespace bxdf::render {
 
-namespace {
-
-Vec3 safe_normalize(const Vec3& v) {
-  const float l = length(v);
-  return l != 0.0f ? v / l : v;
+Vec3 normal_map_compose(const Vec3& color, const Vec3& tangent, float sign, const Vec3& normal) {
+  const Vec3 c = (color - Vec3(0.5f, 0.5f, 0.5f)) * 2.0f;
+  const Vec3 b = cross(normal, tangent) * sign;
+  return safe_normalize(tangent * c.x + b * c.y + normal * c.z);
 }
 
-}  // namespace
-
-Vec3 normal_map_tangent(const Vec3& color, float strength, const Vec3& tangent, float sign,
-                        const Vec3& smooth_normal, const Vec3& shading_normal, bool backfacing) {
-  const Vec3 c = (color - Vec3(0.5f, 0.5f, 0.5f)) * 2.0f;
+Vec3 normal_map_finish(Vec3 n, float strength, const Vec3& shading_normal, bool backfacing) {
   // Cycles uses the normal before it is turned towards the viewer, then turns the result.
-  const Vec3 b = cross(smooth_normal, tangent) * sign;
-  Vec3 n = safe_normalize(tangent * c.x + b * c.y + smooth_normal * c.z);
   if (backfacing) n = -n;
   if (strength != 1.0f) {
     const float s = std::max(strength, 0.0f);
@@ -25,6 +18,12 @@ Vec3 normal_map_tangent(const Vec3& color, float strength, const Vec3& tangent, 
   }
   if (n == Vec3(0.0f, 0.0f, 0.0f)) n = shading_normal;
   return n;
+}
+
+Vec3 normal_map_tangent(const Vec3& color, float strength, const Vec3& tangent, float sign,
+                        const Vec3& smooth_normal, const Vec3& shading_normal, bool backfacing) {
+  return normal_map_finish(normal_map_compose(color, tangent, sign, smooth_normal), strength,
+                           shading_normal, backfacing);
 }
 
 }  // namespace bxdf::render

@@ -11,10 +11,16 @@
 
 namespace bxdf::render {
 
+// Cycles' safe_normalize: a zero vector stays zero.
+inline Vec3 safe_normalize(const Vec3& v) {
+  const float l = length(v);
+  return l != 0.0f ? v / l : v;
+}
+
 // Names as the graph files spell them (Blender's identifiers, lower case), in enum order.
 enum class MixBlend {
   Mix, Add, Multiply, Screen, Overlay, Subtract, Divide, Difference, Darken, Lighten, SoftLight,
-  LinearLight,
+  LinearLight, Dodge, Burn, Hue, Saturation, Value, Color,
 };
 extern const std::vector<std::string> kMixBlendNames;
 enum class MathOp {
@@ -53,17 +59,46 @@ void layer_weight(float blend, const Vec3& incoming, const Vec3& normal, bool ba
                   float* fresnel, float* facing);
 Vec3 transform(const std::array<float, 12>& m, TransformKind kind, const Vec3& v, bool normalize);
 
-// Color Ramp: Blender's colour band sampled at i/255 (BKE_colorband_evaluate, RGB mode) into
-// Cycles' table; stops are (pos, r, g, b, a) sorted by pos. Interpolation: "constant",
-// "linear" or "ease" (others throw ParameterError naming them).
+// Color Ramp: Blender's colour band sampled at i/255 (BKE_colorband_evaluate) into Cycles'
+// table; stops are (pos, r, g, b, a) sorted by pos.
+enum class RampInterpolation { Constant, Linear, Ease, Cardinal, BSpline };
+extern const std::vector<std::string> kRampInterpolationNames;
+enum class RampColorMode { RGB, HSV, HSL };
+extern const std::vector<std::string> kRampColorModeNames;
+enum class RampHue { Near, Far, Clockwise, CounterClockwise };
+extern const std::vector<std::string> kRampHueNames;
+// Throws ParameterError for no stops or unsorted ones.
 ColorRampTable color_ramp_table(const std::vector<std::array<float, 5>>& stops,
-                                const std::string& interpolation);
+                                RampInterpolation interpolation,
+                                RampColorMode color_mode = RampColorMode::RGB,
+                                RampHue hue = RampHue::Near);
+Vec3 rgb_to_hsl(const Vec3& rgb);
+Vec3 hsl_to_rgb(const Vec3& hsl);
 // Cycles' rgb_ramp_lookup without extrapolation.
 void color_ramp(const ColorRampTable& table, float fac, Vec3* color, float* alpha);
 
-// Normal Map, tangent space (svm/tex_coord.h): `color` in [0, 1]³, the UV map's interpolated
-// tangent and sign, the unnormalised smooth normal; Cycles' strength rule.
+// Normal Map, tangent space (svm/tex_coord.h), in two steps around the object → world normal
+// transform: compose the mapped normal from `color` in [0, 1]³, the UV map's interpolated
+// tangent and sign and the (object-space) smooth normal; then turn it for back faces and apply
+// Cycles' strength rule about the (world) shading normal. normal_map_tangent does both with
+// no transform between.
+Vec3 normal_map_compose(const Vec3& color, const Vec3& tangent, float sign, const Vec3& normal);
+Vec3 normal_map_finish(Vec3 n, float strength, const Vec3& shading_normal, bool backfacing);
 Vec3 normal_map_tangent(const Vec3& color, float strength, const Vec3& tangent, float sign,
                         const Vec3& smooth_normal, const Vec3& shading_normal, bool backfacing);
+
+// Bump (svm/displace.h): the height at the point and at p + dpdx, p + dpdy; `normal` is the
+// unperturbed normal (the Normal input or the shading normal). The result has passed
+// ensure_valid_reflection.
+struct BumpInputs {
+  float height = 0.0f, height_x = 0.0f, height_y = 0.0f;
+  Vec3 dpdx, dpdy, normal;
+  float strength = 1.0f, distance = 1.0f;
+  bool invert = false;
+};
+Vec3 bump_normal(const BumpInputs& in, const Vec3& ng, const Vec3& incoming);
+// Cycles' ensure_valid_reflection (closure/bsdf_util.h): `n` tilted towards `ng` until the
+// mirror direction of `incoming` (towards the viewer) is above the surface.
+Vec3 ensure_valid_reflection(const Vec3& ng, const Vec3& incoming, const Vec3& n);
 
 }  // namespace bxdf::render

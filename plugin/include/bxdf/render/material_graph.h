@@ -23,7 +23,7 @@ struct Hit;
 enum class GraphOp : uint8_t {
   Const, UV, Generated, Object, Position, Normal, Incoming, Image, Transform, MixRGB, Math,
   VectorMath, Invert, Gamma, BrightContrast, HSV, Separate, Combine, ColorRamp, Fresnel,
-  LayerWeight, NormalMap,
+  LayerWeight, NormalMap, Bump,
 };
 
 // Registers hold a float as (f, f, f), colours and vectors as themselves; reading a colour or a
@@ -42,7 +42,10 @@ struct GraphNode {
   bool clamp = false;  // mix_rgb, math: saturate the result
   bool flag = false;   // image: unassociate alpha; transform: normalise
   int index = -1;      // texture, UV map, ramp or matrix
-  std::array<GraphInput, 5> in{};
+  // Where the node reads the surface: at the hit (0), or at the bump offsets dx (1) or dy (2)
+  // when it is a copy in a bump's height sub-program.
+  uint8_t offset = 0;
+  std::array<GraphInput, 6> in{};
   int out = 0;  // first output register; a node's outputs are consecutive
 };
 
@@ -55,6 +58,16 @@ struct GraphClosure {
   bool all_constant = true;
   BxDFPtr prebuilt;                  // when every parameter is constant: built once
   int normal_reg = -1;               // register of a perturbed normal, or -1
+  bool diffuse_closure = false;      // one of Cycles' diffuse closures (bump-shadowed)
+  // Anisotropic orientation: a tangent value (world space; reg −1 and no constant: the point's
+  // own tangent) and a rotation in turns about the normal (Cycles' Anisotropic BSDF).
+  bool has_tangent = false;
+  GraphInput tangent;
+  GraphInput rotation;  // constant 0: none
+  bool anisotropic = false;  // an anisotropy parameter that is referenced or not 0
+  bool oriented() const {
+    return anisotropic || has_tangent || rotation.reg >= 0 || rotation.constant.x != 0.0f;
+  }
 };
 
 struct ColorRampTable {
@@ -84,10 +97,22 @@ class MaterialGraph {
   std::vector<ColorRampTable> ramps;
   std::vector<std::array<float, 12>> matrices;  // 3×4 rows
   int num_registers = 0;
+  bool reads_offsets = false;  // some node is a bump's copy at an offset point
+  // Register of Cycles' default tangent (radial about the object's Z axis, from generated
+  // coordinates), filled before the program runs when an oriented closure needs it; or −1.
+  int default_tangent_reg = -1;
+
+  // The length of the bump offsets, in world units, relative to the point's distance from the
+  // origin (so that p + offset stays well resolved in float): Cycles' offsets are its ray
+  // differentials, about a pixel's footprint; ours are a fixed small step (docs/material-graph.md).
+  static constexpr float kBumpOffset = 1e-3f;
 
   // Runs the program; `registers` holds kMaxRegisters.
   void evaluate(const ShadingContext& ctx, Vec3* registers) const;
   RGB emitted(const Vec3* registers) const;
+  // Holdout closures' total weight (Cycles makes the pixel transparent by it on camera rays).
+  std::vector<GraphInput> holdouts;
+  RGB holdout(const Vec3* registers) const;
   bool emission_is_constant() const { return emission.reg < 0; }
   // Adds each closure with a non-zero weight to `bsdf`, placing per-hit models in `arena`.
   // `tangent` orients anisotropic closures (as the point's own frame does).

@@ -82,12 +82,23 @@ class Scene {
   // Mesh attributes at a hit, for material graphs (hit barycentrics may lie outside the
   // triangle: attributes extrapolate linearly, as ray differentials need).
   Vec3 uv(const Hit& hit, int map) const;  // (u, v, 0); zero where the mesh has no such map
-  // The UV map's tangent (interpolated, unnormalised) and sign; false when the mesh has none.
+  // The UV map's tangent in object space (interpolated, unnormalised) and sign; false when the
+  // mesh has none.
   bool tangent(const Hit& hit, int map, Vec3* tangent, float* sign) const;
   // Interpolated vertex normal, unnormalised (the geometric normal on a flat mesh).
   Vec3 smooth_normal(const Hit& hit) const;
+  // Normals between world and object space (Aᵀ n and A⁻ᵀ n for the object matrix A; not
+  // normalised).
+  Vec3 normal_to_object(const Hit& hit, const Vec3& n) const;
+  Vec3 normal_to_world(const Hit& hit, const Vec3& n) const;
   Vec3 object_position(const Hit& hit, const Vec3& p) const;
   Vec3 generated(const Hit& hit, const Vec3& p) const;  // object position in the texture space
+  // The hit moved by `dp` (world space, along the triangle's plane): its barycentrics follow,
+  // so attributes read there are the triangle's own, extrapolated linearly past its edges.
+  Hit offset_hit(const Hit& hit, const Vec3& dp) const;
+  // True when some material's emission may be negative (a node material's; Cycles lets a
+  // negative Emission take light away), so that negative path radiance is not an error.
+  bool signed_emission() const { return signed_emission_; }
   // Emitted radiance of the material at a hit (both sides).
   const RGB& emission(uint32_t material) const { return materials_[material].emission; }
   // η_t/η_i of the material's first transmissive component (1 when none), read from the
@@ -111,6 +122,7 @@ class Scene {
     uint32_t material = 0;
     std::vector<std::vector<float>> uv_maps, tangents;  // per corner
     std::array<float, 12> world_to_object{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    std::array<float, 9> object_linear{1, 0, 0, 0, 1, 0, 0, 0, 1};  // object → world, 3×3
     Vec3 texspace_location, texspace_inv_size{1, 1, 1};  // generated = (p − loc)·inv/2 + ½
     MeshVisibility visibility;
     TerminatorOffsets terminator;
@@ -128,6 +140,7 @@ class Scene {
   LightSampler light_sampler_;
   float bounding_radius_ = 0.0f;
   bool committed_ = false;
+  bool signed_emission_ = false;
   std::unique_ptr<EmbreeState> embree_;
 };
 
