@@ -1,6 +1,7 @@
 #include "bxdf/measured/merl.h"
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 #include "bxdf/input_file.h"
@@ -12,8 +13,8 @@ namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
 
-[[noreturn]] void refuse(const std::string& path, const std::string& problem) {
-  throw ParameterError("MERL file '" + printable(path) + "': " + problem);
+[[noreturn]] void refuse(const std::string& source, const std::string& problem) {
+  throw ParameterError("MERL file '" + printable(source) + "': " + problem);
 }
 
 }  // namespace
@@ -129,29 +130,26 @@ RGB MerlData::lookup_trilinear(const HalfDiff& a) const {
 
 MerlData read_merl(const std::string& path) {
   // A regular file (not /dev/zero or a FIFO); a file somewhat too long still gets the
-  // "trailing data" message below.
-  const auto size = static_cast<std::streamoff>(
-      check_input_file(path, kMerlFileBytes + (1u << 20), "MERL file"));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) refuse(path, "cannot be opened");
-  if (size < static_cast<std::streamoff>(3 * sizeof(int32_t)))
-    refuse(path, "is " + std::to_string(size) + " bytes, too short for the 12-byte header");
+  // "trailing data" message from parse_merl.
+  const std::string bytes = read_input_file(path, kMerlFileBytes + (1u << 20), "MERL file");
+  return parse_merl(bytes.data(), bytes.size(), path);
+}
+
+MerlData parse_merl(const char* bytes, size_t size, const std::string& source) {
+  if (size < 3 * sizeof(int32_t))
+    refuse(source, "is " + std::to_string(size) + " bytes, too short for the 12-byte header");
   int32_t dims[3];
-  in.read(reinterpret_cast<char*>(dims), sizeof(dims));
+  std::memcpy(dims, bytes, sizeof(dims));
   if (dims[0] != kMerlThetaH || dims[1] != kMerlThetaD || dims[2] != kMerlPhiD)
-    refuse(path, "header gives dimensions " + std::to_string(dims[0]) + " x " +
+    refuse(source, "header gives dimensions " + std::to_string(dims[0]) + " x " +
                      std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
                      "; expected 90 x 90 x 180");
-  if (size != static_cast<std::streamoff>(kMerlFileBytes))
-    refuse(path, "is " + std::to_string(size) + " bytes; expected " +
+  if (size != kMerlFileBytes)
+    refuse(source, "is " + std::to_string(size) + " bytes; expected " +
                      std::to_string(kMerlFileBytes) + " (" +
-                     (size < static_cast<std::streamoff>(kMerlFileBytes) ? "truncated"
-                                                                         : "trailing data") +
-                     ")");
-  std::vector<double> raw(3 * kMerlCells);
-  in.read(reinterpret_cast<char*>(raw.data()),
-          static_cast<std::streamsize>(raw.size() * sizeof(double)));
-  if (!in) refuse(path, "read failed after the header");
+                     (size < kMerlFileBytes ? "truncated" : "trailing data") + ")");
+  // The values start at byte 12, so they are not 8-byte aligned: copied out one by one.
+  const char* values = bytes + sizeof(dims);
 
   static const char* kChannel[3] = {"red", "green", "blue"};
   MerlData d;
@@ -159,15 +157,16 @@ MerlData read_merl(const std::string& path) {
   d.measured.assign(kMerlCells, 1);
   for (int c = 0; c < 3; ++c) {
     for (size_t i = 0; i < kMerlCells; ++i) {
-      const double v = raw[c * kMerlCells + i];
+      double v;
+      std::memcpy(&v, values + (c * kMerlCells + i) * sizeof(double), sizeof(v));
       if (!std::isfinite(v))
-        refuse(path, std::string("holds a non-finite value (") + (std::isnan(v) ? "NaN" : "Inf") +
+        refuse(source, std::string("holds a non-finite value (") + (std::isnan(v) ? "NaN" : "Inf") +
                          ") in the " + kChannel[c] + " channel at cell " + std::to_string(i));
       if (v < 0.0) d.measured[i] = 0;
       // Checked after the cast: a finite double such as 1e42 becomes Inf as a float.
       const float scaled = static_cast<float>(v * kMerlScale[c]);
       if (!std::isfinite(scaled))
-        refuse(path, "holds " + std::to_string(v) + " in the " + kChannel[c] + " channel at cell " +
+        refuse(source, "holds " + std::to_string(v) + " in the " + kChannel[c] + " channel at cell " +
                          std::to_string(i) + ", too large for a float once scaled");
       d.rgb[3 * i + c] = scaled;
     }
