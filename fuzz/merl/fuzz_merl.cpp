@@ -1,58 +1,34 @@
-// MERL .binary files are 35 MB of doubles, too large to mutate whole. The input is
-//   [0, 12)   the header (three int32 dimensions),
-//   [12]      how the file ends: 0 = full size, 1 = one double short, 2 = one double long,
-//             else that many bytes (x 4096) short,
-//   the rest  (uint32 cell, double value) records patched into a file of valid values
-// so that the fuzzer controls the header, the size and any value. Any exception other than
-// ParameterError is a finding, as is every sanitizer report and a non-finite lookup.
+// MERL .binary files: the input is a whole file, read from memory by the MERL reader's own
+// code (parse_merl_table, which parse_merl and read_merl call with MERL's 90 x 90 x 180 shape)
+// for a table of 3 θh x 4 θd x 5 φd cells, so that a complete file is 1,452 bytes instead of
+// 35 MB. The same input is also given to parse_merl, which must refuse it (no input the fuzzer
+// makes is 35 MB). Any exception other than ParameterError is a finding, as is every sanitizer
+// report and a negative or non-finite value in an accepted table.
 #include <cmath>
 #include <cstdint>
-#include <algorithm>
-#include <cstring>
-#include <vector>
 
 #include "bxdf/measured/merl.h"
 #include "bxdf/params.h"
-#include "fuzz_files.h"
+#include "measured/merl_table.h"
 
 namespace {
 
-// A valid file: the header, then every value 0.25.
-const std::vector<char>& valid_file() {
-  static const std::vector<char> file = [] {
-    std::vector<char> f(bxdf::kMerlFileBytes);
-    const int32_t dims[3] = {bxdf::kMerlThetaH, bxdf::kMerlThetaD, bxdf::kMerlPhiD};
-    std::memcpy(f.data(), dims, sizeof(dims));
-    const double value = 0.25;
-    for (size_t at = 12; at < f.size(); at += 8) std::memcpy(f.data() + at, &value, 8);
-    return f;
-  }();
-  return file;
-}
+constexpr bxdf::MerlShape kSmallShape{3, 4, 5};
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const size_t values = 3 * bxdf::kMerlCells;
-  std::vector<char> file = valid_file();
-  std::memcpy(file.data(), data, std::min<size_t>(size, 12));
-  size_t length = file.size();
-  if (size > 12) {
-    const uint8_t end = data[12];
-    if (end == 1) length -= 8;
-    else if (end == 2) file.resize(length += 8, 0);
-    else if (end > 2) length -= std::min<size_t>(length, size_t(end) * 4096);
-  }
-  for (size_t at = 13; at + 12 <= size; at += 12) {
-    uint32_t cell;
-    std::memcpy(&cell, data + at, 4);
-    std::memcpy(file.data() + 12 + 8 * (cell % values), data + at + 4, 8);
-  }
-  const std::string path = bxdf::fuzz::write_scratch("fuzz.binary", file.data(), length);
+  const char* bytes = reinterpret_cast<const char*>(data);
   try {
-    const bxdf::MerlData d = bxdf::read_merl(path);
+    const bxdf::MerlData d = bxdf::parse_merl_table(bytes, size, "fuzz.binary", kSmallShape);
+    if (d.rgb.size() != 3 * kSmallShape.cells()) __builtin_trap();
     for (float x : d.rgb)
       if (!(x >= 0.0f) || !std::isfinite(x)) __builtin_trap();  // the reader promises neither
+  } catch (const bxdf::ParameterError&) {
+  }
+  try {
+    bxdf::parse_merl(bytes, size, "fuzz.binary");
+    __builtin_trap();  // far too short to be a MERL file
   } catch (const bxdf::ParameterError&) {
   }
   return 0;

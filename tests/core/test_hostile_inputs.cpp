@@ -1,6 +1,7 @@
 // Hostile measured files and inputs (issue 15): values that overflow a float, angles out of
 // range, devices instead of files, text that is not UTF-8, and rho_hh's memory at large n.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -110,7 +111,11 @@ TEST_F(HostileInputs, MerlValuesPastFloatRangeAreRefused) {
 }
 
 TEST_F(HostileInputs, DevicesAndFoldersAreNotReadAsFiles) {
-  for (const std::string path : {"/dev/zero", "/dev/null", "/tmp"}) {
+  // A FIFO with no writer would block an open() for ever: it must be refused before that.
+  const std::string fifo = (dir_ / "fifo.brdf").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& path : {std::string("/dev/zero"), std::string("/dev/null"),
+                                 std::string("/tmp"), fifo}) {
     SCOPED_TRACE(path);
     EXPECT_NE(error_of([&] { read_cornell(path); }).find("not a regular file"), std::string::npos);
     EXPECT_NE(error_of([&] { read_merl(path); }).find("not a regular file"), std::string::npos);

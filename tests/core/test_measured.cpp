@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -306,6 +307,29 @@ TEST(Merl, RefusesBadFilesNamingFileAndProblem) {
   // Too short for a header.
   const std::string tiny = write_text("tiny.binary", "abc");
   EXPECT_NE(error_of([&] { read_merl(tiny); }).find("too short"), std::string::npos);
+}
+
+TEST(Merl, BytesInMemoryReadAsTheFileWithTheSameChecks) {
+  // read_merl reads the file and hands its bytes to parse_merl: the same table either way.
+  std::ifstream in(synthetic_merl_path(), std::ios::binary);
+  std::string bytes(kMerlFileBytes, '\0');
+  ASSERT_TRUE(in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())));
+  const MerlData from_file = read_merl(synthetic_merl_path());
+  const MerlData from_bytes = parse_merl(bytes.data(), bytes.size(), "memory.binary");
+  EXPECT_EQ(from_bytes.rgb, from_file.rgb);
+  EXPECT_EQ(from_bytes.measured, from_file.measured);
+  EXPECT_EQ(from_bytes.missing_cells, from_file.missing_cells);
+  // Refusals name the source given in place of a file name.
+  std::string msg = error_of([&] { parse_merl(bytes.data(), bytes.size() - 8, "memory.binary"); });
+  EXPECT_NE(msg.find("MERL file 'memory.binary'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("truncated"), std::string::npos) << msg;
+  msg = error_of([&] { parse_merl(bytes.data(), 11, "memory.binary"); });
+  EXPECT_NE(msg.find("too short for the 12-byte header"), std::string::npos) << msg;
+  EXPECT_NE(error_of([&] { parse_merl(nullptr, 0, "empty"); }).find("0 bytes"), std::string::npos);
+  const double inf = INFINITY;
+  std::memcpy(bytes.data() + 12 + 2 * kMerlCells * sizeof(double), &inf, sizeof(inf));
+  msg = error_of([&] { parse_merl(bytes.data(), bytes.size(), "memory.binary"); });
+  EXPECT_NE(msg.find("Inf) in the blue channel at cell 0"), std::string::npos) << msg;
 }
 
 // ---- The measured model -------------------------------------------------------------------

@@ -90,22 +90,35 @@ def test_masked_arrays_are_refused():
 class Interrupting:
     """A value whose conversion is interrupted (as by Ctrl-C at that moment)."""
 
+    error = KeyboardInterrupt
+
     def __index__(self):
-        raise KeyboardInterrupt
+        raise self.error
 
     def __float__(self):
-        raise KeyboardInterrupt
+        raise self.error
 
     def __array__(self, dtype=None):
-        raise KeyboardInterrupt
+        raise self.error
 
 
-def test_keyboard_interrupt_during_argument_conversion_propagates():
+class OutOfMemory(Interrupting):
+    """A value whose conversion runs out of memory."""
+
+    error = MemoryError
+
+
+# Errors that are not about the value pass through the conversion untouched.
+not_about_the_value = pytest.mark.parametrize("failing", [Interrupting, OutOfMemory])
+
+
+@not_about_the_value
+def test_interrupt_or_memory_error_during_argument_conversion_propagates(failing):
     m = bxdf.make("lambertian")
-    with pytest.raises(KeyboardInterrupt):
-        m.rho_hh(Interrupting())
-    with pytest.raises(KeyboardInterrupt):
-        m.f(Interrupting(), np.array([0.0, 0.0, 1.0]))
+    with pytest.raises(failing.error):
+        m.rho_hh(failing())
+    with pytest.raises(failing.error):
+        m.f(failing(), np.array([0.0, 0.0, 1.0]))
 
 
 render_only = pytest.mark.skipif(not hasattr(bxdf, "render"), reason="built without the renderer")
@@ -132,13 +145,14 @@ def test_small_scene_renders():
 
 
 @render_only
-def test_keyboard_interrupt_during_scene_conversion_propagates():
+@not_about_the_value
+def test_interrupt_or_memory_error_during_scene_conversion_propagates(failing):
     scene = small_scene()
-    scene["meshes"][0]["positions"] = Interrupting()
-    with pytest.raises(KeyboardInterrupt):
+    scene["meshes"][0]["positions"] = failing()
+    with pytest.raises(failing.error):
         bxdf.render(scene, {"samples": 1})
-    with pytest.raises(KeyboardInterrupt):
-        bxdf.render(small_scene(), {"samples": Interrupting()})
+    with pytest.raises(failing.error):
+        bxdf.render(small_scene(), {"samples": failing()})
 
 
 @render_only

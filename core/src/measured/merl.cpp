@@ -1,10 +1,12 @@
 #include "bxdf/measured/merl.h"
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 #include "bxdf/input_file.h"
 #include "bxdf/params.h"
+#include "merl_table.h"
 
 namespace bxdf {
 
@@ -12,8 +14,8 @@ namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
 
-[[noreturn]] void refuse(const std::string& path, const std::string& problem) {
-  throw ParameterError("MERL file '" + printable(path) + "': " + problem);
+[[noreturn]] void refuse(const std::string& source, const std::string& problem) {
+  throw ParameterError("MERL file '" + printable(source) + "': " + problem);
 }
 
 }  // namespace
@@ -129,62 +131,68 @@ RGB MerlData::lookup_trilinear(const HalfDiff& a) const {
 
 MerlData read_merl(const std::string& path) {
   // A regular file (not /dev/zero or a FIFO); a file somewhat too long still gets the
-  // "trailing data" message below.
-  const auto size = static_cast<std::streamoff>(
-      check_input_file(path, kMerlFileBytes + (1u << 20), "MERL file"));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) refuse(path, "cannot be opened");
-  if (size < static_cast<std::streamoff>(3 * sizeof(int32_t)))
-    refuse(path, "is " + std::to_string(size) + " bytes, too short for the 12-byte header");
+  // "trailing data" message from parse_merl.
+  const std::string bytes = read_input_file(path, kMerlFileBytes + (1u << 20), "MERL file");
+  return parse_merl(bytes.data(), bytes.size(), path);
+}
+
+MerlData parse_merl(const char* bytes, size_t size, const std::string& source) {
+  return parse_merl_table(bytes, size, source, MerlShape{});
+}
+
+MerlData parse_merl_table(const char* bytes, size_t size, const std::string& source,
+                          const MerlShape& shape) {
+  if (size < 3 * sizeof(int32_t))
+    refuse(source, "is " + std::to_string(size) + " bytes, too short for the 12-byte header");
   int32_t dims[3];
-  in.read(reinterpret_cast<char*>(dims), sizeof(dims));
-  if (dims[0] != kMerlThetaH || dims[1] != kMerlThetaD || dims[2] != kMerlPhiD)
-    refuse(path, "header gives dimensions " + std::to_string(dims[0]) + " x " +
-                     std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
-                     "; expected 90 x 90 x 180");
-  if (size != static_cast<std::streamoff>(kMerlFileBytes))
-    refuse(path, "is " + std::to_string(size) + " bytes; expected " +
-                     std::to_string(kMerlFileBytes) + " (" +
-                     (size < static_cast<std::streamoff>(kMerlFileBytes) ? "truncated"
-                                                                         : "trailing data") +
-                     ")");
-  std::vector<double> raw(3 * kMerlCells);
-  in.read(reinterpret_cast<char*>(raw.data()),
-          static_cast<std::streamsize>(raw.size() * sizeof(double)));
-  if (!in) refuse(path, "read failed after the header");
+  std::memcpy(dims, bytes, sizeof(dims));
+  if (dims[0] != shape.theta_h || dims[1] != shape.theta_d || dims[2] != shape.phi_d)
+    refuse(source, "header gives dimensions " + std::to_string(dims[0]) + " x " +
+                       std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + "; expected " +
+                       std::to_string(shape.theta_h) + " x " + std::to_string(shape.theta_d) +
+                       " x " + std::to_string(shape.phi_d));
+  const size_t cells = shape.cells();
+  const size_t expected = shape.file_bytes();
+  if (size != expected)
+    refuse(source, "is " + std::to_string(size) + " bytes; expected " + std::to_string(expected) +
+                       " (" + (size < expected ? "truncated" : "trailing data") + ")");
+  // The values start at byte 12, so they are not 8-byte aligned: copied out one by one.
+  const char* values = bytes + sizeof(dims);
 
   static const char* kChannel[3] = {"red", "green", "blue"};
   MerlData d;
-  d.rgb.resize(3 * kMerlCells);
-  d.measured.assign(kMerlCells, 1);
+  d.rgb.resize(3 * cells);
+  d.measured.assign(cells, 1);
   for (int c = 0; c < 3; ++c) {
-    for (size_t i = 0; i < kMerlCells; ++i) {
-      const double v = raw[c * kMerlCells + i];
+    for (size_t i = 0; i < cells; ++i) {
+      double v;
+      std::memcpy(&v, values + (c * cells + i) * sizeof(double), sizeof(v));
       if (!std::isfinite(v))
-        refuse(path, std::string("holds a non-finite value (") + (std::isnan(v) ? "NaN" : "Inf") +
-                         ") in the " + kChannel[c] + " channel at cell " + std::to_string(i));
+        refuse(source, std::string("holds a non-finite value (") + (std::isnan(v) ? "NaN" : "Inf") +
+                           ") in the " + kChannel[c] + " channel at cell " + std::to_string(i));
       if (v < 0.0) d.measured[i] = 0;
       // Checked after the cast: a finite double such as 1e42 becomes Inf as a float.
       const float scaled = static_cast<float>(v * kMerlScale[c]);
       if (!std::isfinite(scaled))
-        refuse(path, "holds " + std::to_string(v) + " in the " + kChannel[c] + " channel at cell " +
-                         std::to_string(i) + ", too large for a float once scaled");
+        refuse(source, "holds " + std::to_string(v) + " in the " + kChannel[c] +
+                           " channel at cell " + std::to_string(i) +
+                           ", too large for a float once scaled");
       d.rgb[3 * i + c] = scaled;
     }
   }
   // Fill missing cells along θd from the nearest measured cell of the same (θh, φd) column.
-  for (int h = 0; h < kMerlThetaH; ++h) {
-    for (int p = 0; p < kMerlPhiD; ++p) {
-      for (int t = 0; t < kMerlThetaD; ++t) {
-        const size_t i = merl_cell(h, t, p);
+  for (int h = 0; h < shape.theta_h; ++h) {
+    for (int p = 0; p < shape.phi_d; ++p) {
+      for (int t = 0; t < shape.theta_d; ++t) {
+        const size_t i = shape.cell(h, t, p);
         if (d.measured[i]) continue;
         ++d.missing_cells;
         int best = -1;
-        for (int r = 1; r < kMerlThetaD && best < 0; ++r) {
-          if (t - r >= 0 && d.measured[merl_cell(h, t - r, p)]) best = t - r;
-          else if (t + r < kMerlThetaD && d.measured[merl_cell(h, t + r, p)]) best = t + r;
+        for (int r = 1; r < shape.theta_d && best < 0; ++r) {
+          if (t - r >= 0 && d.measured[shape.cell(h, t - r, p)]) best = t - r;
+          else if (t + r < shape.theta_d && d.measured[shape.cell(h, t + r, p)]) best = t + r;
         }
-        const size_t src = best >= 0 ? merl_cell(h, best, p) : i;
+        const size_t src = best >= 0 ? shape.cell(h, best, p) : i;
         for (int c = 0; c < 3; ++c) d.rgb[3 * i + c] = best >= 0 ? d.rgb[3 * src + c] : 0.0f;
       }
     }

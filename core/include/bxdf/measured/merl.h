@@ -63,6 +63,9 @@ struct MerlData {
 // Missing (negative) cells take the value of the nearest measured cell of lower θd in the same
 // (θh, φd) column, or 0 when the column has none: lookups never see a negative value.
 MerlData read_merl(const std::string& path);
+// The same reader over a file's bytes in memory (read_merl reads the file, then calls this):
+// the same checks and messages, with `source` standing for the file name in them.
+MerlData parse_merl(const char* bytes, size_t size, const std::string& source);
 
 // Writes BRDF values (per channel, kMerlCells each, MERL index order; negative = missing) in
 // the MERL layout, applying the inverse scale. Used by tests and tools that make synthetic data.
