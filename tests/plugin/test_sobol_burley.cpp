@@ -47,6 +47,16 @@ TEST(SobolBurley, UnscrambledPointsAreSobols) {
     EXPECT_EQ(sobol::to_unit_float(sobol::sobol(i, 0)), dim0[i]) << i;
     EXPECT_EQ(sobol::to_unit_float(sobol::sobol(i, 1)), dim1[i]) << i;
   }
+  // The byte-table product equals the generator matrix times the index, for full 32-bit indices.
+  uint32_t index = 0x12345678u;
+  for (int k = 0; k < 1000; ++k, index = sobol::hash(index)) {
+    for (int d = 0; d < sobol::kDimensions; ++d) {
+      uint32_t expected = 0;
+      for (int bit = 0; bit < 32; ++bit)
+        if ((index >> bit) & 1u) expected ^= sobol::directions(d)[size_t(bit)];
+      EXPECT_EQ(sobol::sobol(index, d), expected) << "dim " << d << " index " << index;
+    }
+  }
   // Every generator matrix is invertible (triangular with a unit diagonal): column i is m_i / 2^i
   // with m_i odd, so its lowest set bit is 2^-i.
   for (int d = 0; d < sobol::kDimensions; ++d) {

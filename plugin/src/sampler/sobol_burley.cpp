@@ -36,8 +36,25 @@ constexpr std::array<std::array<uint32_t, 32>, kDimensions> make_directions() {
 
 constexpr std::array<std::array<uint32_t, 32>, kDimensions> kDirections = make_directions();
 
+constexpr std::array<ByteTables, kDimensions> make_byte_tables() {
+  std::array<ByteTables, kDimensions> tables{};
+  for (std::size_t d = 0; d < kDimensions; ++d)
+    for (std::size_t byte = 0; byte < 4; ++byte)
+      for (uint32_t value = 0; value < 256; ++value) {
+        uint32_t x = 0;
+        for (std::size_t bit = 0; bit < 8; ++bit)
+          if ((value >> bit) & 1u) x ^= kDirections[d][8 * byte + bit];
+        tables[d][byte][value] = x;
+      }
+  return tables;
+}
+
+constexpr std::array<ByteTables, kDimensions> kByteTables = make_byte_tables();
+
 }  // namespace
 
 const std::array<uint32_t, 32>& directions(int d) { return kDirections[static_cast<std::size_t>(d)]; }
+
+const ByteTables& byte_tables(int d) { return kByteTables[static_cast<std::size_t>(d)]; }
 
 }  // namespace bxdf::render::sobol

@@ -57,13 +57,18 @@ inline uint32_t owen_scramble(uint32_t x, uint32_t seed) {
   return reverse_bits(owen_scramble_reversed(reverse_bits(x), seed));
 }
 
+// The generator matrix of dimension `d` applied to each byte value of each index byte: the
+// product with a 32-bit index is then four lookups (indices are full 32-bit numbers after
+// shuffling, so a loop over their bits would take 32 steps).
+using ByteTables = std::array<std::array<uint32_t, 256>, 4>;
+const ByteTables& byte_tables(int d);
+
 // Unscrambled Sobol coordinate `d` (< kDimensions) of point `index`, as a 32-bit fraction.
 inline uint32_t sobol(uint32_t index, int d) {
-  const std::array<uint32_t, 32>& v = directions(d);
-  uint32_t x = 0;
-  for (int bit = 0; index != 0; ++bit, index >>= 1)
-    if (index & 1u) x ^= v[static_cast<std::size_t>(bit)];
-  return x;
+  if (d == 0) return reverse_bits(index);  // van der Corput
+  const ByteTables& t = byte_tables(d);
+  return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^
+         t[3][index >> 24];
 }
 
 // [0, 1): the top 24 bits, so that the float is never rounded up to 1.
