@@ -3,8 +3,9 @@
     blender -b --factory-startup --python-exit-code 1 --python bench/side_by_side.py -- \
         --scene cornell --spp 64 256 --threads 2 --reference-spp 1024 --repeats 3
 
-(`make bench` runs it through tools/run-bench.sh.) The scene is a harness scene (compare/scenes.py),
-its materials set up by the add-on exactly as the harness does, so each engine renders what it
+(`make bench` runs it on cornell and principled_showroom through tools/run-bench.sh, `bash
+bench/final_figures.sh` on every harness scene with global illumination.) The scene is a harness
+scene (compare/scenes.py), its materials set up by the add-on exactly as the harness does, so each engine renders what it
 renders in `make report`. For every sample count both engines render `--repeats` times with
 different seeds, alternating (BXDF_LAB, Cycles, BXDF_LAB, ...), each render timed as the user sees
 it (bpy.ops.render.render: export, BVH, render, hand-back). The converged reference is the average

@@ -52,7 +52,7 @@ if [ -d "$BUILD/python" ]; then
 fi
 echo
 echo "== BXDF_LAB vs Cycles side by side (bench/side_by_side.py, 2 threads each)"
-for scene in ${SIDE_BY_SIDE_SCENES:-cornell}; do
+for scene in ${SIDE_BY_SIDE_SCENES:-cornell principled_showroom}; do
   BXDF_PYTHONPATH="$(pwd)/$BUILD/python" blender -b --factory-startup --python-exit-code 1 \
     --python bench/side_by_side.py -- --scene "$scene" --spp 64 256 --threads 2 \
     --reference-spp 1024 --repeats 3 --json "$BUILD/bench/side_by_side_$scene.json" 2>&1 \

@@ -598,8 +598,12 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
         add(transformed(welded[static_cast<size_t>(instance_mesh[i])], instance_matrix[i]),
             meshes[static_cast<size_t>(instance_mesh[i])], item_path(key_path(root, "instance_mesh"), i));
     } else {
-      for (size_t i = 0; i < welded.size(); ++i) add(welded[i], meshes[i], item_path(key_path(root, "meshes"), i));
+      for (size_t i = 0; i < welded.size(); ++i) {
+        add(welded[i], meshes[i], item_path(key_path(root, "meshes"), i));
+        welded[i] = Mesh();  // the scene holds its own copy: free this one at once
+      }
     }
+    std::vector<Mesh>().swap(welded);  // before the BVH build, the peak of a render's memory
     const auto converted = std::chrono::steady_clock::now();
     scene.commit();
     out.convert_seconds = std::chrono::duration<double>(converted - started).count();

@@ -7,6 +7,7 @@
 #include "bxdf/params.h"
 #include "bxdf/render/valid_reflection.h"
 #include "bxdf/sampling.h"
+#include "sampler/path_sampler.h"
 
 namespace bxdf::render {
 
@@ -53,13 +54,14 @@ PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
 }
 
 RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf,
-                                 const Vec3& wo, PCG32& rng, PathStats& stats) const {
+                                 const Vec3& wo, const std::array<float, 3>& u,
+                                 PathStats& stats) const {
   const LightSampler& sampler = scene_.light_sampler();
   if (sampler.empty()) return RGB(0.0f);
   const auto& lights = scene_.lights();
   float select = 0.0f;
-  const size_t index = sampler.sample(rng.uniform(), &select);
-  const float u1 = rng.uniform(), u2 = rng.uniform();
+  const size_t index = sampler.sample(u[0], &select);
+  const float u1 = u[1], u2 = u[2];
   LightSample ls;
   const Light* light = index < lights.size() ? &lights[index] : nullptr;
   if (light) {
@@ -159,7 +161,8 @@ RGB PathTracer::escaped(const Vec3& dir, bool camera_ray, bool count_fully, floa
   return L;
 }
 
-PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats) const {
+PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
+                             PathStats& stats) const {
   PathResult result;
   RGB L(0.0f), beta(1.0f);
   float eta_scale = 1.0f;  // product of (η_wi/η_wo)² over refractions: undoes radiance scaling
@@ -247,10 +250,9 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
     }
     if (bounce > settings_.max_bounces || bsdf.num_components() == 0) break;
 
-    if (bsdf.has_non_delta()) L += beta * sample_one_light(hit, sp, bsdf, wo, rng, stats);
+    if (bsdf.has_non_delta()) L += beta * sample_one_light(hit, sp, bsdf, wo, sampler.light(bounce), stats);
 
-    const float u1 = rng.uniform(), u2 = rng.uniform();
-    const BSDFSample bs = bsdf.sample_f(wo, Point2(u1, u2));
+    const BSDFSample bs = bsdf.sample_f(wo, sampler.bsdf(bounce));
     if (!bs.valid() || bs.f.is_black()) break;
     beta *= bs.f_cos / bs.pdf;
     // Cycles' bsdf_sample rescales every sample of a reflecting lobe, none of a transmitting one.
@@ -279,7 +281,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, PCG32& rng, PathStats& stats
       const float m = beta.max_component() * eta_scale;
       const float p = std::min(std::sqrt(m), 1.0f);
       if (p < 1.0f) {
-        if (!(rng.uniform() < p)) break;
+        if (!(sampler.russian_roulette(bounce) < p)) break;
         beta *= 1.0f / p;
       }
     }

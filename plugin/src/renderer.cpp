@@ -10,17 +10,11 @@
 #include <string>
 
 #include "bxdf/params.h"
+#include "sampler/path_sampler.h"
 
 namespace bxdf::render {
 
 namespace {
-
-uint64_t mix64(uint64_t z) {  // splitmix64 finaliser: decorrelates seed and pass
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
 
 void check_settings(const RenderSettings& s) {
   const auto bad = [](const std::string& name, long long v, const std::string& range) {
@@ -87,20 +81,21 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
            (callbacks.cancel && callbacks.cancel->load(std::memory_order_relaxed));
   };
 
-  const auto render_tile = [&](const Tile& tile, int pass, int first_sample, int count) {
+  const auto render_tile = [&](const Tile& tile, int first_sample, int count) {
     PathStats local;
     uint64_t samples = 0;
     for (int y = tile.y0; y < tile.y1; ++y) {
       for (int x = tile.x0; x < tile.x1; ++x) {
-        // One random stream per pixel, restarted per pass from (seed, pass): the image does not
-        // depend on the thread count or the order of tiles.
-        const uint64_t pixel = static_cast<uint64_t>(y) * settings.width + x;
-        PCG32 rng(pixel, mix64(settings.seed * 0x100000001b3ULL + static_cast<uint64_t>(pass)));
+        // The pixel's samples are points first_sample.. of its own Sobol-Burley sequence: the
+        // image depends on neither the thread count, the order of tiles nor the passes.
+        const uint32_t pixel_seed =
+            PathSampler::pixel_seed(static_cast<uint32_t>(x), static_cast<uint32_t>(y), settings.seed);
         for (int s = first_sample; s < first_sample + count; ++s) {
-          const Point2 offset = filter.sample(Point2(rng.uniform(), rng.uniform()));
+          const PathSampler sampler(pixel_seed, static_cast<uint32_t>(s));
+          const Point2 offset = filter.sample(sampler.filter());
           const Ray ray = camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
                                               static_cast<float>(y) + 0.5f + offset.y);
-          const PathResult r = tracer.trace(ray, rng, local);
+          const PathResult r = tracer.trace(ray, sampler, local);
           film.add_sample(x, y, r.radiance, std::max(r.alpha, background_alpha));
           ++samples;
         }
@@ -124,7 +119,7 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
           [&](const tbb::blocked_range<size_t>& range) {
             for (size_t t = range.begin(); t != range.end(); ++t) {
               if (cancelled()) return;
-              render_tile(tiles[t], pass, first, count);
+              render_tile(tiles[t], first, count);
               std::lock_guard<std::mutex> lock(progress_mutex);  // one callback at a time
               ++progress.tiles_done;
               if (callbacks.on_tile && !callbacks.on_tile(progress)) stop = true;

@@ -8,15 +8,17 @@
 // continuing with Cycles' probability √(max throughput).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "bxdf/render/ray.h"
 #include "bxdf/render/scene.h"
 #include "bxdf/render/transparent_shadows.h"
-#include "bxdf/rng.h"
 
 namespace bxdf::render {
+
+class PathSampler;  // sampler/path_sampler.h: the path's Sobol-Burley numbers
 
 struct IntegratorSettings {
   // 0 = direct light only (emitters seen from the first hit); n = up to n indirect bounces.
@@ -45,11 +47,11 @@ class PathTracer {
 
   // Radiance along a camera ray; never NaN, Inf or negative (such samples are counted in
   // stats->rejected and returned as 0).
-  PathResult trace(const Ray& camera_ray, PCG32& rng, PathStats& stats) const;
+  PathResult trace(const Ray& camera_ray, const PathSampler& sampler, PathStats& stats) const;
 
  private:
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
-                       PCG32& rng, PathStats& stats) const;
+                       const std::array<float, 3>& u, PathStats& stats) const;
   // Radiance a ray collects from the lights it passes through before `tmax`; MIS-weighted
   // against light sampling unless `count_fully` (camera rays, delta bounces).
   RGB lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bool count_fully,

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# The speed figures of issue #14, for an otherwise idle machine (takes about an hour):
+#   bash bench/final_figures.sh [BUILD]        (after `make build`)
+# 1. bench/side_by_side.py on every harness scene with global illumination (max_bounces > 0 in
+#    compare/scenes.py), 2 threads each, 64 and 256 spp, 5 interleaved renders per engine;
+# 2. bench/thread_scaling.py: 1 -> 2 thread speed-up and ray rate against Embree's ceiling;
+# 3. bench/hdri_vs_cycles.py: the HDRI scene's time to equal error.
+# Every table is also written as JSON to $BUILD/bench/final/. SCENES="a b" overrides the list.
+set -euo pipefail
+BUILD=${1:-build}
+cd "$(dirname "$0")/.."
+OUT="$BUILD/bench/final"
+mkdir -p "$OUT"
+echo "final_figures: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
+SCENES=${SCENES:-$(/usr/bin/python3 -c "
+from compare import scenes
+print(' '.join(n for n, f in scenes.SCENES.items() if f().max_bounces > 0))")}
+for scene in $SCENES; do
+  echo
+  BXDF_PYTHONPATH="$(pwd)/$BUILD/python" blender -b --factory-startup --python-exit-code 1 \
+    --python bench/side_by_side.py -- --scene "$scene" --spp 64 256 --threads 2 \
+    --reference-spp 1024 --repeats 5 --json "$OUT/side_by_side_$scene.json" 2>&1 \
+    | grep -E '^(side_by_side|  *spp| +[0-9]+ )' || echo "final_figures: side_by_side failed on $scene"
+done
+echo
+/usr/bin/python3 bench/thread_scaling.py --build "$BUILD" --repeats 5
+echo
+PYTHONPATH="$BUILD/python" blender -b --factory-startup --python-exit-code 1 \
+  --python bench/hdri_vs_cycles.py 2>/dev/null | grep -v '^Fra:\|^Saved:\|^ Time:\|^Blender\|^Read\|^$'

@@ -1,0 +1,54 @@
+// The random numbers of one camera sample's path, drawn from Owen-scrambled Sobol points
+// (sobol_burley.h). Every decision of the path (pixel filter; at each bounce the light choice and
+// light point, the BSDF sample, Russian roulette) is its own dimension set with its own hashed
+// seed, so the sets are decorrelated from each other and from other pixels, while within a set
+// the pixel's samples stay stratified. The numbers depend only on (render seed, pixel, sample
+// index): images do not depend on threads, tiles or the split into passes.
+#pragma once
+
+#include <cstdint>
+
+#include "bxdf/math.h"
+#include "sampler/sobol_burley.h"
+
+namespace bxdf::render {
+
+class PathSampler {
+ public:
+  // `pixel_seed` from pixel_seed(); `sample_index` counts the pixel's samples from 0.
+  PathSampler(uint32_t pixel_seed, uint32_t sample_index)
+      : seed_(pixel_seed), index_(sample_index) {}
+
+  // A pixel's seed: its position and the render seed, hashed.
+  static uint32_t pixel_seed(uint32_t x, uint32_t y, uint64_t render_seed) {
+    const uint32_t s = sobol::hash(static_cast<uint32_t>(render_seed) ^
+                                   sobol::hash(static_cast<uint32_t>(render_seed >> 32)));
+    return sobol::hash(x ^ sobol::hash(y ^ s));
+  }
+
+  Point2 filter() const { return point2(set(kFilter, 0)); }
+  // (light choice, light point u, light point v) at a path vertex.
+  std::array<float, 3> light(int bounce) const {
+    return sobol::sample<3>(index_, set(kLight, bounce));
+  }
+  Point2 bsdf(int bounce) const { return point2(set(kBsdf, bounce)); }
+  float russian_roulette(int bounce) const {
+    return sobol::sample<1>(index_, set(kRussianRoulette, bounce))[0];
+  }
+
+ private:
+  enum Purpose : uint32_t { kFilter, kLight, kBsdf, kRussianRoulette, kPurposes };
+
+  uint32_t set(Purpose purpose, int bounce) const {
+    return seed_ ^ sobol::hash(static_cast<uint32_t>(bounce) * kPurposes + purpose);
+  }
+  Point2 point2(uint32_t seed) const {
+    const std::array<float, 2> u = sobol::sample<2>(index_, seed);
+    return Point2(u[0], u[1]);
+  }
+
+  uint32_t seed_;
+  uint32_t index_;
+};
+
+}  // namespace bxdf::render

@@ -1,0 +1,93 @@
+// Owen-scrambled, shuffled Sobol points (Burley 2020, "Practical Hash-based Owen Scrambling"),
+// the sequence Cycles 3.4 calls Sobol-Burley. Each call gives one coordinate set of one sample:
+// the sample index is shuffled by a nested uniform scramble and every coordinate is Owen-scrambled,
+// both seeded, so that any seed gives points that are uniformly distributed (unbiased) and keep
+// the Sobol net's stratification: every power-of-two prefix of a 1D coordinate has one point per
+// stratum, and the first two coordinates together form a (0, m, 2)-net. Higher dimensions of a
+// path come from independent seeds (padding), not from higher Sobol dimensions.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace bxdf::render::sobol {
+
+// The Sobol coordinates this sampler draws from (Joe and Kuo's first four dimensions).
+constexpr int kDimensions = 4;
+
+// Generator-matrix columns of Sobol dimension `d` (0 = van der Corput): column i is the
+// contribution of index bit i, as a 32-bit binary fraction.
+const std::array<uint32_t, 32>& directions(int d);
+
+inline uint32_t reverse_bits(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+// An integer hash with good avalanche (Wellons' lowbias32): turns structured seeds (pixel
+// numbers, dimension numbers) into unrelated ones.
+inline uint32_t hash(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+// Base-2 Owen scrambling of a bit-reversed value: each bit is flipped depending only on the bits
+// below it (the more significant bits of the unreversed value), which is what Owen's nested
+// scrambling requires. The hash is Vegdahl's improved Laine-Karras permutation (psychopath.io,
+// 2021), the one Cycles uses.
+inline uint32_t owen_scramble_reversed(uint32_t n, uint32_t seed) {
+  n ^= n * 0x3d20adeau;
+  n += seed;
+  n *= (seed >> 16) | 1u;
+  n ^= n * 0x05526c56u;
+  n ^= n * 0x53a22864u;
+  return n;
+}
+
+// Nested uniform (Owen) scramble of a 32-bit binary fraction.
+inline uint32_t owen_scramble(uint32_t x, uint32_t seed) {
+  return reverse_bits(owen_scramble_reversed(reverse_bits(x), seed));
+}
+
+// The generator matrix of dimension `d` applied to each byte value of each index byte: the
+// product with a 32-bit index is then four lookups (indices are full 32-bit numbers after
+// shuffling, so a loop over their bits would take 32 steps).
+using ByteTables = std::array<std::array<uint32_t, 256>, 4>;
+const ByteTables& byte_tables(int d);
+
+// Unscrambled Sobol coordinate `d` (< kDimensions) of point `index`, as a 32-bit fraction.
+inline uint32_t sobol(uint32_t index, int d) {
+  if (d == 0) return reverse_bits(index);  // van der Corput
+  const ByteTables& t = byte_tables(d);
+  return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^
+         t[3][index >> 24];
+}
+
+// [0, 1): the top 24 bits, so that the float is never rounded up to 1.
+inline float to_unit_float(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
+
+// Coordinates 0..N-1 of sample `index` of the sequence seeded by `seed` (N <= kDimensions).
+// Different seeds give statistically independent sequences.
+template <int N>
+std::array<float, N> sample(uint32_t index, uint32_t seed) {
+  static_assert(N >= 1 && N <= kDimensions, "Sobol-Burley draws up to kDimensions coordinates");
+  // Per-coordinate seeds: arbitrary distinct odd constants mixed through the hash.
+  constexpr uint32_t kSalt[kDimensions + 1] = {0x9e78e391u, 0x67c33241u, 0x78c395c5u,
+                                               0x39468210u, 0xcaa726acu};
+  const uint32_t shuffled = owen_scramble(index, hash(seed ^ kSalt[kDimensions]));
+  std::array<float, N> out{};
+  for (int d = 0; d < N; ++d)
+    out[static_cast<std::size_t>(d)] =
+        to_unit_float(owen_scramble(sobol(shuffled, d), hash(seed ^ kSalt[d])));
+  return out;
+}
+
+}  // namespace bxdf::render::sobol

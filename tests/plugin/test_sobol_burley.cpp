@@ -1,0 +1,168 @@
+// The Owen-scrambled Sobol sampler (plugin/src/sampler): the Sobol generator itself, the
+// stratification the scrambling must keep, unbiasedness on known integrals, the variance it buys
+// over independent numbers, and decorrelation between a path's dimension sets.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include "sampler/path_sampler.h"
+#include "sampler/sobol_burley.h"
+
+using namespace bxdf;
+using namespace bxdf::render;
+
+namespace {
+
+// Does every elementary interval of 2^-a by 2^-b (a + b = m) hold exactly one of the 2^m points?
+bool is_zero_m_two_net(const std::vector<std::array<float, 2>>& pts, int m) {
+  for (int a = 0; a <= m; ++a) {
+    const int b = m - a;
+    std::vector<int> count(size_t(1) << m, 0);
+    for (const auto& p : pts) {
+      const int i = static_cast<int>(std::ldexp(p[0], a)), j = static_cast<int>(std::ldexp(p[1], b));
+      ++count[(static_cast<size_t>(i) << b) | static_cast<size_t>(j)];
+    }
+    for (int c : count)
+      if (c != 1) return false;
+  }
+  return true;
+}
+
+// One point per interval of 2^-m.
+bool is_stratified_1d(const std::vector<float>& xs, int m) {
+  std::set<int> cells;
+  for (float x : xs) cells.insert(static_cast<int>(std::ldexp(x, m)));
+  return cells.size() == xs.size() && xs.size() == (size_t(1) << m);
+}
+
+}  // namespace
+
+TEST(SobolBurley, UnscrambledPointsAreSobols) {
+  // Dimension 0 is van der Corput; dimension 1 (polynomial x + 1) starts 0, 1/2, 3/4, 1/4, 5/8 ...
+  const float dim0[8] = {0, 0.5f, 0.25f, 0.75f, 0.125f, 0.625f, 0.375f, 0.875f};
+  const float dim1[8] = {0, 0.5f, 0.75f, 0.25f, 0.625f, 0.125f, 0.375f, 0.875f};
+  for (uint32_t i = 0; i < 8; ++i) {
+    EXPECT_EQ(sobol::to_unit_float(sobol::sobol(i, 0)), dim0[i]) << i;
+    EXPECT_EQ(sobol::to_unit_float(sobol::sobol(i, 1)), dim1[i]) << i;
+  }
+  // The byte-table product equals the generator matrix times the index, for full 32-bit indices.
+  uint32_t index = 0x12345678u;
+  for (int k = 0; k < 1000; ++k, index = sobol::hash(index)) {
+    for (int d = 0; d < sobol::kDimensions; ++d) {
+      uint32_t expected = 0;
+      for (int bit = 0; bit < 32; ++bit)
+        if ((index >> bit) & 1u) expected ^= sobol::directions(d)[size_t(bit)];
+      EXPECT_EQ(sobol::sobol(index, d), expected) << "dim " << d << " index " << index;
+    }
+  }
+  // Every generator matrix is invertible (triangular with a unit diagonal): column i is m_i / 2^i
+  // with m_i odd, so its lowest set bit is 2^-i.
+  for (int d = 0; d < sobol::kDimensions; ++d) {
+    for (int i = 0; i < 32; ++i) {
+      const uint64_t v = sobol::directions(d)[size_t(i)];
+      EXPECT_EQ((v >> (31 - i)) & 1u, 1u) << d << " " << i;
+      EXPECT_EQ((v << (i + 1)) & 0xffffffffu, 0u) << d << " " << i;
+    }
+  }
+}
+
+TEST(SobolBurley, OwenScrambleIsAPermutationOfEachLevel) {
+  // Nested scrambling maps the 2^k intervals of each level onto each other one to one.
+  for (uint32_t seed : {0u, 1u, 0xdeadbeefu}) {
+    std::set<uint32_t> images;
+    for (uint32_t x = 0; x < 256; ++x) images.insert(sobol::owen_scramble(x << 24, seed) >> 24);
+    EXPECT_EQ(images.size(), 256u) << seed;
+  }
+}
+
+TEST(SobolBurley, PrefixesAreStratifiedForAnySeed) {
+  for (uint32_t seed : {0u, 7u, 123456u, 0xffffffffu}) {
+    for (int m = 0; m <= 10; ++m) {
+      const uint32_t n = 1u << m;
+      std::vector<std::array<float, 2>> pairs;
+      std::vector<std::vector<float>> coords(sobol::kDimensions);
+      for (uint32_t i = 0; i < n; ++i) {
+        const auto p2 = sobol::sample<2>(i, seed);
+        pairs.push_back(p2);
+        const auto p4 = sobol::sample<4>(i, seed);
+        for (int d = 0; d < sobol::kDimensions; ++d) coords[size_t(d)].push_back(p4[size_t(d)]);
+      }
+      EXPECT_TRUE(is_zero_m_two_net(pairs, m)) << "seed " << seed << ", 2^" << m << " points";
+      for (int d = 0; d < sobol::kDimensions; ++d)
+        EXPECT_TRUE(is_stratified_1d(coords[size_t(d)], m)) << "seed " << seed << " dim " << d;
+    }
+  }
+}
+
+TEST(SobolBurley, EstimatesAreUnbiasedAndLessNoisyThanIndependentSamples) {
+  // Two integrals over [0,1)^3: a disc's indicator (discontinuous) and a smooth product.
+  struct Integrand {
+    const char* name;
+    double exact;
+    double (*f)(double, double, double);
+  };
+  const Integrand integrands[] = {
+      {"quarter disc", M_PI / 4.0, [](double x, double y, double) { return x * x + y * y < 1.0 ? 1.0 : 0.0; }},
+      {"x e^y z^2", 0.5 * (std::exp(1.0) - 1.0) / 3.0,
+       [](double x, double y, double z) { return x * std::exp(y) * z * z; }},
+  };
+  constexpr int kSamples = 64, kSeeds = 4000;
+  for (const Integrand& g : integrands) {
+    double sum = 0.0, sum_sq = 0.0, f_sum = 0.0, f_sum_sq = 0.0;
+    for (uint32_t seed = 0; seed < kSeeds; ++seed) {
+      double estimate = 0.0;
+      for (uint32_t i = 0; i < kSamples; ++i) {
+        const auto u = sobol::sample<3>(i, sobol::hash(seed));
+        const double v = g.f(u[0], u[1], u[2]);
+        estimate += v;
+        f_sum += v;
+        f_sum_sq += v * v;
+      }
+      estimate /= kSamples;
+      sum += estimate;
+      sum_sq += estimate * estimate;
+    }
+    const double mean = sum / kSeeds;
+    const double variance = sum_sq / kSeeds - mean * mean;
+    const double f_mean = f_sum / (double(kSamples) * kSeeds);
+    const double independent_variance = (f_sum_sq / (double(kSamples) * kSeeds) - f_mean * f_mean) / kSamples;
+    EXPECT_NEAR(mean, g.exact, 5.0 * std::sqrt(variance / kSeeds) + 1e-7) << g.name;
+    EXPECT_LT(variance, 0.25 * independent_variance) << g.name;
+  }
+}
+
+TEST(PathSampler, DimensionSetsAreDecorrelated) {
+  // E[u v] = 1/4 for independent uniforms; the same seed reused for two purposes would give
+  // E[u^2] = 1/3. Taken over many pixels and samples.
+  double light_bsdf = 0.0, bounce_pair = 0.0, filter_rr = 0.0;
+  int n = 0;
+  for (uint32_t px = 0; px < 64; ++px) {
+    const uint32_t seed = PathSampler::pixel_seed(px, 3, 42);
+    for (uint32_t s = 0; s < 64; ++s, ++n) {
+      const PathSampler sampler(seed, s);
+      light_bsdf += double(sampler.light(1)[1]) * sampler.bsdf(1).x;
+      bounce_pair += double(sampler.bsdf(0).x) * sampler.bsdf(1).x;
+      filter_rr += double(sampler.filter().y) * sampler.russian_roulette(0);
+      for (float u : sampler.light(2)) {
+        EXPECT_GE(u, 0.0f);
+        EXPECT_LT(u, 1.0f);
+      }
+    }
+  }
+  // Standard deviation of a mean of n products of independent uniforms: sqrt(7/144 / n).
+  const double tolerance = 5.0 * std::sqrt(7.0 / 144.0 / n);
+  EXPECT_NEAR(light_bsdf / n, 0.25, tolerance);
+  EXPECT_NEAR(bounce_pair / n, 0.25, tolerance);
+  EXPECT_NEAR(filter_rr / n, 0.25, tolerance);
+}
+
+TEST(PathSampler, PixelsGetDifferentSequencesAndSeedsChangeThem) {
+  const PathSampler a(PathSampler::pixel_seed(10, 20, 0), 0);
+  const PathSampler b(PathSampler::pixel_seed(11, 20, 0), 0);
+  const PathSampler c(PathSampler::pixel_seed(10, 20, 1), 0);
+  EXPECT_NE(a.bsdf(0).x, b.bsdf(0).x);
+  EXPECT_NE(a.bsdf(0).x, c.bsdf(0).x);
+  EXPECT_EQ(a.bsdf(0).x, PathSampler(PathSampler::pixel_seed(10, 20, 0), 0).bsdf(0).x);
+}
