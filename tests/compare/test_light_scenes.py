@@ -69,9 +69,9 @@ def test_povray_pairings_of_soft_lights_are_approximate_and_say_why(name):
 
 @pytest.fixture(scope="module")
 def light_run(tmp_path_factory):
-    """Every light scene at 32 x 32, 16 samples, in BXDF_LAB and Cycles (and ANALYTIC)."""
+    """Every light scene at 32 x 32, 32 samples, in BXDF_LAB and Cycles (and ANALYTIC)."""
     return run_compare(tmp_path_factory.mktemp("lights"), "--scenes", *LIGHT_SCENE_NAMES,
-                       "--engines", "BXDF_LAB", "CYCLES", "--res", "32", "32", "--spp", "16",
+                       "--engines", "BXDF_LAB", "CYCLES", "--res", "32", "32", "--spp", "32",
                        timeout=900)
 
 
