@@ -89,10 +89,29 @@ def configure_povray(spec: SceneSpec, work_dir: str, basename: str, threads: int
     pov.antialias_enable = False
     pov.radio_enable = spec.povray_radiosity
     pov.max_trace_level = max(5, 2 * spec.max_bounces + 2)
+    if _has_povray_transmission(spec):
+        # A POV-Ray glass finish traces both its Fresnel mirror and its refraction at every hit,
+        # and the mirror's weight (rgb 1 before Fresnel) never trips adc_bailout: 2^level rays per
+        # pixel. At level 18 cycles_glass_room ran past the 900 s job timeout; 8 bounds the tree.
+        pov.max_trace_level = min(pov.max_trace_level, POVRAY_TRANSMISSION_TRACE_LEVEL)
     scene.world.pov.horizon_color = spec.world_color
     return {"radiosity": spec.povray_radiosity, "antialias": False,
             "max_trace_level": pov.max_trace_level, "switches": pov.command_line_switches,
             "lights": povray_lights_as_exported()}
+
+
+POVRAY_TRANSMISSION_TRACE_LEVEL = 8
+
+
+def _has_povray_transmission(spec: SceneSpec) -> bool:
+    """Whether a material gets a transmitting POV-Ray finish (povray_setup: glass, refraction,
+    transparent, Principled with transmission)."""
+    for material in spec.materials():
+        if material.model in ("cycles_glass", "cycles_refraction", "cycles_transparent"):
+            return True
+        if material.model == "cycles_principled" and material.params.get("transmission", 0.0) > 0:
+            return True
+    return False
 
 
 def povray_lights_as_exported() -> list:
