@@ -66,7 +66,7 @@ class BXDFLAB_OT_compare_renders(bpy.types.Operator):
     def _start_modal(self, context, options):
         self.run = compare.CompareRun(context.scene, options)
         self.windows_before = {w.as_pointer() for w in context.window_manager.windows}
-        self.done = None  # set by the render handlers: "complete" or "cancel"
+        self.done = None  # set by the render handlers: "complete" or "cancel"; "all" once every engine ran
         bpy.app.handlers.render_complete.append(self._on_complete)
         bpy.app.handlers.render_cancel.append(self._on_cancel)
         self.timer = context.window_manager.event_timer_add(TIMER_INTERVAL, window=context.window)
@@ -106,13 +106,21 @@ class BXDFLAB_OT_compare_renders(bpy.types.Operator):
         # refuses to start while a render job exists: wait for the job itself to end.
         if event.type != "TIMER" or self.done is None or bpy.app.is_job_running("RENDER"):
             return {"PASS_THROUGH"}
+        if self.done == "all":
+            # Ending disables the add-ons the run enabled, which re-registers RNA types under any
+            # job that reads the scene meanwhile (a material preview rendering on its thread):
+            # that read fails ("'ID' object has no attribute 'camera'") and Blender can crash.
+            if bpy.app.is_job_running("RENDER_PREVIEW"):
+                return {"PASS_THROUGH"}
+            return self._end(context, finished=True)
         if self.done == "cancel":  # Esc in the render job
             self.run.end("cancelled")
             return self._end(context, finished=False)
         self.run.end()
         if self._next(context):
             return {"PASS_THROUGH"}
-        return self._end(context, finished=True)
+        self.done = "all"  # the last step's restored settings may start a preview: next tick
+        return {"PASS_THROUGH"}
 
     def _end(self, context, finished):
         context.window_manager.event_timer_remove(self.timer)
