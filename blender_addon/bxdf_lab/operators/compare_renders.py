@@ -103,15 +103,16 @@ class BXDFLAB_OT_compare_renders(bpy.types.Operator):
         if event.type == "ESC":
             return self._end(context, finished=False)
         # render_complete runs on the job's thread before the job ends, and render.render
-        # refuses to start while a render job exists: wait for the job itself to end.
-        if event.type != "TIMER" or self.done is None or bpy.app.is_job_running("RENDER"):
+        # refuses to start while a render job exists: wait for the job itself to end. Each step
+        # also switches the engine and the materials' use_nodes under any material preview that
+        # the last step's settings started (a Cycles preview registering its passes on its
+        # thread while POV-Ray's job started crashed Blender), and ending disables the add-ons
+        # the run enabled, which re-registers RNA types under it ("'ID' object has no attribute
+        # 'camera'", then a crash): wait for previews too.
+        if (event.type != "TIMER" or self.done is None or bpy.app.is_job_running("RENDER")
+                or bpy.app.is_job_running("RENDER_PREVIEW")):
             return {"PASS_THROUGH"}
         if self.done == "all":
-            # Ending disables the add-ons the run enabled, which re-registers RNA types under any
-            # job that reads the scene meanwhile (a material preview rendering on its thread):
-            # that read fails ("'ID' object has no attribute 'camera'") and Blender can crash.
-            if bpy.app.is_job_running("RENDER_PREVIEW"):
-                return {"PASS_THROUGH"}
             return self._end(context, finished=True)
         if self.done == "cancel":  # Esc in the render job
             self.run.end("cancelled")
