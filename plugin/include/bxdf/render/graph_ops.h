@@ -8,6 +8,7 @@
 
 #include "bxdf/math.h"
 #include "bxdf/render/material_graph.h"
+#include "bxdf/render/valid_reflection.h"  // ensure_valid_reflection, used by bump and normal maps
 
 namespace bxdf::render {
 
@@ -97,8 +98,5 @@ struct BumpInputs {
   bool invert = false;
 };
 Vec3 bump_normal(const BumpInputs& in, const Vec3& ng, const Vec3& incoming);
-// Cycles' ensure_valid_reflection (closure/bsdf_util.h): `n` tilted towards `ng` until the
-// mirror direction of `incoming` (towards the viewer) is above the surface.
-Vec3 ensure_valid_reflection(const Vec3& ng, const Vec3& incoming, const Vec3& n);
 
 }  // namespace bxdf::render
