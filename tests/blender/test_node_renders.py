@@ -179,12 +179,23 @@ def _scale_object(scene, scale):
 
 
 # On Diffuse, Cycles dims light at grazing angles to the perturbed normal by its bump
-# shadowing term (kernel/closure/bsdf.h); on Glossy it does not.
-@pytest.mark.parametrize("bsdf", ["ShaderNodeBsdfGlossy", "ShaderNodeBsdfDiffuse"])
+# shadowing term (kernel/closure/bsdf.h); on Glossy it does not; on Principled it dims the
+# diffuse and sheen lobes (diffuse closures in Cycles) and not the specular one.
+NORMAL_MAPPED = {
+    "ShaderNodeBsdfGlossy": {"Color": (0.8, 0.6, 0.4, 1.0), "Roughness": 0.6},
+    "ShaderNodeBsdfDiffuse": {"Color": (0.8, 0.6, 0.4, 1.0), "Roughness": 0.6},
+    "ShaderNodeBsdfPrincipled": {"Base Color": (0.8, 0.6, 0.4, 1.0), "Roughness": 0.6,
+                                 "Sheen": 1.0, "Specular": 0.5},
+}
+
+
+@pytest.mark.parametrize("bsdf", list(NORMAL_MAPPED))
 @pytest.mark.parametrize("scale", [(1.0, 1.0, 1.0), (2.0, 0.5, 1.0)], ids=["unscaled", "scaled"])
 def test_a_normal_map_matches_cycles(bsdf, scale, tmp_path):
     tree = Tree("normal mapped")
-    closure = tree.surface(tree.add(bsdf, Color=(0.8, 0.6, 0.4, 1.0), Roughness=0.6))
+    closure = tree.surface(tree.add(bsdf))
+    for name, value in NORMAL_MAPPED[bsdf].items():
+        closure.inputs[name].default_value = value
     normal_map = tree.add("ShaderNodeNormalMap", Strength=0.8)
     image = tree.add("ShaderNodeTexImage")
     image.image, image.interpolation = _normal_texture(tmp_path), "Closest"
