@@ -65,6 +65,19 @@ bool BSDF::has_transmission() const {
   return false;
 }
 
+RGB BSDF::component_f(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const {
+  const BxDF& b = *components_[i];
+  RGB f = b.f(wo, wi);
+  if (bump_shadowing_[i] == BumpShadowing::Whole) {
+    f *= bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
+  } else if (bump_shadowing_[i] == BumpShadowing::DiffuseLobes) {
+    // f − (1 − term) · diffuse part, so the other lobes keep their full value.
+    const float term = bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
+    if (term < 1.0f) f = sanitize_nonnegative(f - b.diffuse_closure_f(wo, wi) * (1.0f - term));
+  }
+  return f;
+}
+
 template <class Term>
 RGB BSDF::weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask,
                        Term term) const {
@@ -76,17 +89,35 @@ RGB BSDF::weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask
     const Vec3 wo = frames_[i].to_local(wo_world);
     if (wo.z == 0.0f) continue;
     const Vec3 wi = frames_[i].to_local(wi_world);
-    RGB f = b.f(wo, wi);
-    if (bump_shadowing_[i] == BumpShadowing::Whole) {
-      f *= bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
-    } else if (bump_shadowing_[i] == BumpShadowing::DiffuseLobes) {
-      // f − (1 − term) · diffuse part, so the other lobes keep their full value.
-      const float term = bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
-      if (term < 1.0f) f = sanitize_nonnegative(f - b.diffuse_closure_f(wo, wi) * (1.0f - term));
-    }
-    sum += weights_[i] * term(f, wi);
+    sum += weights_[i] * term(component_f(i, wo, wi, wi_world), wi);
   }
   return sum;
+}
+
+void BSDF::f_f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, RGB* f_sum,
+                       RGB* f_cos_sum, float* pdf_out) const {
+  // f(), f_cos() and pdf() in one pass, term for term as they compute them.
+  const bool reflect = dot(wi_world, ng_) * dot(wo_world, ng_) > 0.0f;
+  RGB f_total(0.0f), f_cos_total(0.0f);
+  float pdf_sum = 0.0f, total_weight = 0.0f;
+  for (int i = 0; i < count_; ++i) {
+    const BxDF& b = *components_[i];
+    if (!b.matches(mask)) continue;
+    total_weight += sample_weights_[i];
+    const bool scatters = agrees_with_geometry(b.flags(), reflect);
+    if (sample_weights_[i] == 0.0f && !scatters) continue;
+    const Vec3 wo = frames_[i].to_local(wo_world);
+    if (wo.z == 0.0f) continue;
+    const Vec3 wi = frames_[i].to_local(wi_world);
+    if (sample_weights_[i] != 0.0f) pdf_sum += sample_weights_[i] * b.pdf(wo, wi);
+    if (!scatters) continue;
+    const RGB f = component_f(i, wo, wi, wi_world);
+    f_total += weights_[i] * f;
+    f_cos_total += weights_[i] * (f * abs_cos_theta(wi));
+  }
+  *f_sum = f_total;
+  *f_cos_sum = f_cos_total;
+  *pdf_out = total_weight > 0.0f ? pdf_sum / total_weight : 0.0f;
 }
 
 RGB BSDF::f(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask) const {
@@ -162,10 +193,9 @@ BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
     return out;
   }
 
-  // Non-delta: f and pdf of the whole mixture, with the geometric-normal test, as f() does.
-  out.pdf = pdf(wo_world, out.wi, mask);
-  out.f = f(wo_world, out.wi, mask);
-  out.f_cos = f_cos(wo_world, out.wi, mask);
+  // Non-delta: f and pdf of the whole mixture, with the geometric-normal test, as f() does
+  // (one pass over the components for the three).
+  f_f_cos_pdf(wo_world, out.wi, mask, &out.f, &out.f_cos, &out.pdf);
   if (!(out.pdf > 0.0f)) return BSDFSample{};
   return out;
 }

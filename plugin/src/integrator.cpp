@@ -55,8 +55,8 @@ PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
 }
 
 RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf,
-                                 const Vec3& wo, const std::array<float, 3>& u,
-                                 PathStats& stats) const {
+                                 const Vec3& wo, const Vec3& viewer_n,
+                                 const std::array<float, 3>& u, PathStats& stats) const {
   const LightSampler& sampler = scene_.light_sampler();
   if (sampler.empty()) return RGB(0.0f);
   const auto& lights = scene_.lights();
@@ -89,7 +89,7 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
   const TerminatorOffsets& terminator = scene_.terminator(hit.mesh);
   // The shading offset dims the viewer's side only: light through a transmissive surface is not
   // rescaled (Cycles' bsdf_eval).
-  const float cos_in = dot(ls.wi, viewer_side_normal(sp, wo));
+  const float cos_in = dot(ls.wi, viewer_n);
   if (cos_in >= 0.0f) f *= shading_offset_factor(cos_in, terminator.shading);
 
   if (!light || light->visibility.cast_shadow) {
@@ -220,7 +220,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
     // their shadow rays out). Transmissive surfaces keep the geometric decision. The closures'
     // normal is Cycles' valid-reflection one, in sp.ns's orientation.
     const float viewer_side = dot(wo, sp.ng) < 0.0f ? -1.0f : 1.0f;
-    const Vec3 closure_n = viewer_side_normal(sp, wo) * viewer_side;
+    const Vec3 viewer_n = viewer_side_normal(sp, wo);  // once per hit: three uses below
+    const Vec3 closure_n = viewer_n * viewer_side;
     BSDF bsdf(Frame::from_normal_tangent(closure_n, sp.tangent), transmissive ? sp.ng : closure_n);
     RGB emitted = mat.emission;
     if (mat.graph) {
@@ -261,15 +262,15 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
     }
     if (bounce > settings_.max_bounces || bsdf.num_components() == 0) break;
 
-    if (bsdf.has_non_delta()) L += beta * sample_one_light(hit, sp, bsdf, wo, sampler.light(bounce), stats);
+    if (bsdf.has_non_delta())
+      L += beta * sample_one_light(hit, sp, bsdf, wo, viewer_n, sampler.light(bounce), stats);
 
     const BSDFSample bs = bsdf.sample_f(wo, sampler.bsdf(bounce));
     if (!bs.valid() || bs.f.is_black()) break;
     beta *= bs.f_cos / bs.pdf;
     // Cycles' bsdf_sample rescales every sample of a reflecting lobe, none of a transmitting one.
     if (!(bs.flags & kTransmission))
-      beta *= shading_offset_factor(dot(bs.wi, viewer_side_normal(sp, wo)),
-                                    scene_.terminator(hit.mesh).shading);
+      beta *= shading_offset_factor(dot(bs.wi, viewer_n), scene_.terminator(hit.mesh).shading);
     if (beta.is_black()) break;
     if (transmissive && (bs.flags & kTransmission)) {
       // Entering (wo on the front side) scales radiance by (η_i/η_t)²; leaving undoes it.

@@ -110,6 +110,7 @@ void Scene::add_graph_attributes(const MeshView& m, const std::string& who, Stor
       throw ParameterError(who + ": object_to_world is singular (no object coordinates)");
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) s.object_linear[size_t(3 * r + c)] = m.object_to_world[4 * r + c];
+    s.linear_identity = s.object_linear == std::array<float, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1};
   }
   // Tangents arrive in world space (moved with the mesh); normal maps work in object space,
   // as Cycles does, so they are taken back once here.

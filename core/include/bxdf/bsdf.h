@@ -81,6 +81,11 @@ class BSDF {
   Vec3 ng_{0, 0, 1};
   template <class Term>
   RGB weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, Term term) const;
+  // Component i's f at local wo, wi, with Cycles' bump shadowing where it applies.
+  RGB component_f(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const;
+  // f(), f_cos() and pdf() of one direction pair in one pass (what sample_f needs).
+  void f_f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, RGB* f,
+                   RGB* f_cos, float* pdf) const;
 
   const BxDF* components_[kMaxComponents] = {};
   RGB weights_[kMaxComponents];

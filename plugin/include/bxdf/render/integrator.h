@@ -50,8 +50,10 @@ class PathTracer {
   PathResult trace(const Ray& camera_ray, const PathSampler& sampler, PathStats& stats) const;
 
  private:
+  // `viewer_n`: viewer_side_normal of the hit (computed once per hit by trace).
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
-                       const std::array<float, 3>& u, PathStats& stats) const;
+                       const Vec3& viewer_n, const std::array<float, 3>& u,
+                       PathStats& stats) const;
   // Radiance a ray collects from the lights it passes through before `tmax`; MIS-weighted
   // against light sampling unless `count_fully` (camera rays, delta bounces).
   RGB lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bool count_fully,

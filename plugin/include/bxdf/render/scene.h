@@ -91,6 +91,9 @@ class Scene {
   // normalised).
   Vec3 normal_to_object(const Hit& hit, const Vec3& n) const;
   Vec3 normal_to_world(const Hit& hit, const Vec3& n) const;
+  // True when the mesh's object matrix neither rotates nor scales (both maps above are then
+  // the identity, exactly), so per-hit code may skip them.
+  bool normals_in_world_space(const Hit& hit) const { return meshes_[hit.mesh].linear_identity; }
   Vec3 object_position(const Hit& hit, const Vec3& p) const;
   Vec3 generated(const Hit& hit, const Vec3& p) const;  // object position in the texture space
   // The hit moved by `dp` (world space, along the triangle's plane): its barycentrics follow,
@@ -123,6 +126,7 @@ class Scene {
     std::vector<std::vector<float>> uv_maps, tangents;  // per corner
     std::array<float, 12> world_to_object{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     std::array<float, 9> object_linear{1, 0, 0, 0, 1, 0, 0, 0, 1};  // object → world, 3×3
+    bool linear_identity = true;  // object_linear is the identity: normals need no transform
     Vec3 texspace_location, texspace_inv_size{1, 1, 1};  // generated = (p − loc)·inv/2 + ½
     MeshVisibility visibility;
     TerminatorOffsets terminator;
