@@ -635,11 +635,12 @@ void apply_render_settings(const py::handle& settings, render::RenderSettings& s
       if (!PyBool_Check(v.ptr())) refuse(path, short_repr(v) + " is not a bool; expected True or False");
       s.transparent_background = v.cast<bool>();
     } else if (key == "pixel_filter") {
-      const std::string name = lower(text(v, path, "'box', 'gaussian' or 'pixel_center'"));
-      if (name == "box") s.filter = render::FilterType::Box;
-      else if (name == "gaussian") s.filter = render::FilterType::Gaussian;
-      else if (name == "pixel_center" || name == "pixel_centre" || name == "center") s.filter = render::FilterType::PixelCenter;
-      else refuse(path, "'" + name + "' is unknown; expected 'box', 'gaussian' or 'pixel_center'");
+      const std::string name = lower(text(v, path, render::kFilterNames));
+      try {
+        s.filter = render::parse_filter(name);
+      } catch (const ParameterError&) {
+        refuse(path, "'" + name + "' is unknown; expected " + render::kFilterNames);
+      }
     } else {
       refuse(path, "is not a setting; expected one of " + std::string(kKnown));
     }

@@ -156,7 +156,7 @@ void read_render_settings(const Reader& r, const json& j, RenderSettings& s) {
     try {
       s.filter = parse_filter(name);
     } catch (const ParameterError&) {
-      r.fail("render.filter", "one of \"box\", \"gaussian\", \"pixel_center\"", j["filter"]);
+      r.fail("render.filter", std::string("one of ") + kFilterNames, j["filter"]);
     }
   }
   if (j.contains("filter_width"))
