@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 
+#include "bxdf/microfacet/multiscatter_ggx.h"
 #include "bxdf/models/cycles_transparent.h"
 #include "bxdf/params.h"
 #include "bxdf/render/valid_reflection.h"
@@ -180,6 +181,10 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
   const auto& lights = scene_.lights();
   // Per thread, made once: graph registers and per-hit closures (reset at every hit).
   thread_local ShadingScratch scratch;
+  // Multiscatter GGX evaluates a 16-walk estimate seeded by the directions; salted per sample,
+  // its error averages away over a pixel's samples instead of staying fixed where they share
+  // the directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does.
+  const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
   // Cycles counts a pass through a Transparent BSDF apart from the bounces (path_state_next:
   // LABEL_TRANSPARENT): it uses no bounce, keeps the path's flags (a camera ray stays one), its
   // MIS pdf and its ray origin (only tmin moves on), and the path ends at the surface after
