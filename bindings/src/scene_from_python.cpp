@@ -618,13 +618,15 @@ void apply_render_settings(const py::handle& settings, render::RenderSettings& s
   const py::dict d = as_dict(settings, root);
   static const char* const kKnown =
       "'samples', 'max_bounces', 'pixel_filter', 'filter_width', 'threads', 'seed', 'tile_size', "
-      "'samples_per_pass', 'russian_roulette_depth', 'transparent_background'";
+      "'samples_per_pass', 'russian_roulette_depth', 'transparent_max_bounces', "
+      "'transparent_background'";
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
     const std::string path = root + "['" + key + "']";
     const py::handle v = item.second;
     if (key == "samples") s.samples_per_pixel = static_cast<int>(integer(v, path, 1, 1 << 24));
     else if (key == "max_bounces") s.max_bounces = static_cast<int>(integer(v, path, 0, 1 << 16));
+    else if (key == "transparent_max_bounces") s.transparent_max_bounces = static_cast<int>(integer(v, path, 0, 1024));
     else if (key == "russian_roulette_depth") s.russian_roulette_depth = static_cast<int>(integer(v, path, 0, 1 << 16));
     else if (key == "threads") s.threads = static_cast<int>(integer(v, path, 0, 1 << 16));
     else if (key == "seed") s.seed = static_cast<uint64_t>(integer(v, path, 0, std::numeric_limits<long long>::max()));

@@ -138,6 +138,10 @@ TEST(Renderer, RefusesBadSettingsByName) {
   s.max_bounces = -1;
   EXPECT_NE(message(s).find("max_bounces"), std::string::npos);
   s = small_settings();
+  s.transparent_max_bounces = -1;
+  EXPECT_NE(message(s).find("transparent_max_bounces' is -1; valid range [0, inf)"),
+            std::string::npos);
+  s = small_settings();
   s.filter_width = 0.0f;
   EXPECT_NE(message(s).find("filter width"), std::string::npos);
   Scene uncommitted;

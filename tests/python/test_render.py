@@ -465,6 +465,7 @@ BAD_SETTINGS = [
     ({"samples": 0}, r"settings\['samples'\]: 0 is out of range; expected an integer in \[1, "),
     ({"samples": 2.5}, r"settings\['samples'\]: 2.5 is not an integer"),
     ({"max_bounces": -1}, r"settings\['max_bounces'\]"),
+    ({"transparent_max_bounces": 1025}, r"settings\['transparent_max_bounces'\]: 1025 is out of range; expected an integer in \[0, 1024\]"),
     ({"pixel_filter": "mitchell"}, r"settings\['pixel_filter'\]: 'mitchell' is unknown; expected 'box', 'gaussian', 'blackman_harris' or 'pixel_center'"),
     ({"filter_width": 0.0}, r"settings\['filter_width'\]: 0.0 is out of range; expected a number in \(0, 16\]"),
     ({"filter_width": float("nan")}, r"settings\['filter_width'\]"),
