@@ -29,7 +29,8 @@ class BXDFLAB_PG_render_settings(bpy.types.PropertyGroup):
                ("BLACKMAN_HARRIS", "Blackman-Harris",
                 "Blackman-Harris window of the given width (Cycles' default filter)"),
                ("PIXEL_CENTER", "Pixel Centre", "One ray through each pixel's centre "
-                                                "(as Cycles' Gaussian of width 0.01)")])
+                                                "(Cycles' nearest is Gaussian of width 0.01, "
+                                                "which still spreads rays by 0.0025 px)")])
     filter_width: FloatProperty(name="Filter Width", description="Pixel filter width in pixels",
                                 default=1.5, min=0.01, max=10.0, subtype="PIXEL")
     threads: IntProperty(name="Threads", description="Worker threads; 0 = all cores", default=0,
