@@ -38,7 +38,11 @@ void BSDF::add(const BxDF* component, const RGB& weight, const Frame* frame, boo
   weights_[count_] = weight;
   sample_weights_[count_] = (weight.r + weight.g + weight.b) * (1.0f / 3.0f);
   frames_[count_] = frame ? *frame : frame_;
-  bump_shadowed_[count_] = bump_shadowed && frame && !(frame->n == frame_.n);
+  const bool perturbed = frame && !(frame->n == frame_.n);
+  bump_shadowing_[count_] = !perturbed    ? BumpShadowing::None
+                            : bump_shadowed ? BumpShadowing::Whole
+                            : component->has_diffuse_closure_lobes() ? BumpShadowing::DiffuseLobes
+                                                                   : BumpShadowing::None;
   ++count_;
 }
 
@@ -73,7 +77,13 @@ RGB BSDF::weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask
     if (wo.z == 0.0f) continue;
     const Vec3 wi = frames_[i].to_local(wi_world);
     RGB f = b.f(wo, wi);
-    if (bump_shadowed_[i]) f *= bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
+    if (bump_shadowing_[i] == BumpShadowing::Whole) {
+      f *= bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
+    } else if (bump_shadowing_[i] == BumpShadowing::DiffuseLobes) {
+      // f − (1 − term) · diffuse part, so the other lobes keep their full value.
+      const float term = bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
+      if (term < 1.0f) f = sanitize_nonnegative(f - b.diffuse_closure_f(wo, wi) * (1.0f - term));
+    }
     sum += weights_[i] * term(f, wi);
   }
   return sum;

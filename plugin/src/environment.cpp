@@ -18,11 +18,6 @@ void require_colour(const char* name, const RGB& c) {
                          ") must be in [0, inf) per channel");
 }
 
-int wrap(int i, int n) {
-  const int r = i % n;
-  return r < 0 ? r + n : r;
-}
-
 // Cycles' lower_bound over the CDF column of a (value, cdf) pair array with `count` cells.
 int find_interval(const float* pairs, int count, float u) {
   int first = 0, n = count;
@@ -66,6 +61,13 @@ Vec3 equirect_to_direction(float u, float v) {
   return Vec3(s * std::cos(phi), s * std::sin(phi), std::cos(theta));
 }
 
+Point2 direction_to_mirrorball(const Vec3& dir) {
+  Vec3 d(dir.x, dir.y - 1.0f, dir.z);
+  const float div = 2.0f * std::sqrt(std::max(-0.5f * d.y, 0.0f));
+  if (div > 0.0f) d = d * (1.0f / div);
+  return Point2(0.5f * (d.x + 1.0f), 0.5f * (d.z + 1.0f));
+}
+
 EquirectImage load_equirect_image(const std::string& path) {
   const Image rgba = read_image(path);  // top row first
   EquirectImage img;
@@ -103,6 +105,13 @@ Environment::Environment(EnvironmentSettings settings) : s_(std::move(settings))
       if (!(v >= 0.0f) || !std::isfinite(v))
         throw ParameterError("world image values must be in [0, inf)");
     if (s_.weight.is_black()) has_image_ = false;
+    // Into the texel layout texture.cpp reads (alpha 1); the RGB copy is then released.
+    texels_.width = img.width;
+    texels_.height = img.height;
+    texels_.texels.resize(size_t(img.width) * img.height);
+    for (size_t i = 0; i < texels_.texels.size(); ++i)
+      texels_.texels[i] = RGBA{img.rgb[3 * i], img.rgb[3 * i + 1], img.rgb[3 * i + 2], 1.0f};
+    std::vector<float>().swap(s_.image.rgb);
   }
   black_ = s_.constant.is_black() && !has_image_;
   if (!has_image_) {
@@ -113,21 +122,10 @@ Environment::Environment(EnvironmentSettings settings) : s_(std::move(settings))
 }
 
 RGB Environment::lookup(float u, float v) const {
-  const EquirectImage& img = s_.image;
-  auto texel = [&](int x, int y) {
-    const float* p = &img.rgb[(size_t(wrap(y, img.height)) * img.width + wrap(x, img.width)) * 3];
-    return RGB(p[0], p[1], p[2]);
-  };
-  if (s_.interpolation == TextureInterpolation::Closest)
-    return texel(static_cast<int>(std::floor(u * img.width)),
-                 static_cast<int>(std::floor(v * img.height)));
-  // Cycles' bilinear lookup with Repeat extension: texel centres at (i + 0.5) / size.
-  const float fx = u * img.width - 0.5f, fy = v * img.height - 0.5f;
-  const float x0f = std::floor(fx), y0f = std::floor(fy);
-  const float tx = fx - x0f, ty = fy - y0f;
-  const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
-  return (texel(x0, y0) * (1.0f - tx) + texel(x0 + 1, y0) * tx) * (1.0f - ty) +
-         (texel(x0, y0 + 1) * (1.0f - tx) + texel(x0 + 1, y0 + 1) * tx) * ty;
+  // The one lookup path of the renderer's images (texture.cpp), with the extension Cycles'
+  // Environment Texture has: Repeat.
+  const RGBA c = interpolate_texels(texels_, s_.interpolation, TextureExtension::Repeat, u, v);
+  return RGB(c.r, c.g, c.b);
 }
 
 RGB Environment::eval(const Vec3& dir) const {

@@ -7,6 +7,7 @@
 #include "bxdf/microfacet/multiscatter_ggx.h"
 #include "bxdf/models/cycles_transparent.h"
 #include "bxdf/params.h"
+#include "bxdf/render/textured_emission.h"
 #include "bxdf/render/valid_reflection.h"
 #include "bxdf/sampling.h"
 #include "sampler/path_sampler.h"
@@ -73,6 +74,17 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
   const Light* light = index < lights.size() ? &lights[index] : nullptr;
   if (light) {
     ls = sample_light(*light, sp.p, Point2(u1, u2));
+    if (ls.triangle >= 0 && ls.pdf > 0.0f && light->triangles[size_t(ls.triangle)].textured) {
+      // Textured emission: the material's emission where the sample landed, seen from here.
+      thread_local Vec3 registers[MaterialGraph::kMaxRegisters];
+      Hit at;
+      at.mesh = light->mesh;
+      at.triangle = light->triangles[size_t(ls.triangle)].triangle;
+      at.b1 = ls.b1;
+      at.b2 = ls.b2;
+      at.t = ls.distance;
+      ls.radiance = textured_emission(scene_, at, -ls.wi, registers);
+    }
   } else {
     ls.wi = scene_.world().sample(Point2(u1, u2), &ls.pdf);
     ls.distance = kInfinity;
@@ -264,9 +276,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
       if (count_fully) {
         L += beta * emitted;
       } else {
-        // Textured emission is found by BSDF sampling alone (it is not an area light).
-        const bool textured = mat.graph && !mat.graph->emission_is_constant();
-        const int li = textured ? -1 : scene_.area_light_of_mesh(hit.mesh);
+        // Weighted against light sampling of the mesh's light (constant or textured).
+        const int li = scene_.area_light_of_mesh(hit.mesh);
         const float lp = li < 0 ? 0.0f
                                 : scene_.light_sampler().probability(size_t(li)) *
                                       mesh_light_pdf(lights[size_t(li)], prev_p, sp.p, sp.ng);

@@ -273,6 +273,9 @@ LightSample sample_light(const Light& light, const Vec3& p, Point2 u) {
       if (!(cos_light > 0.0f)) return s;
       s.radiance = tri.radiance;
       s.pdf = d2 / (cos_light * light.total_area);
+      s.triangle = static_cast<int32_t>(i);
+      s.b1 = b1;
+      s.b2 = b2;
       return s;
     }
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bxdf/render/environment.h"
 #include "bxdf/render/graph_ops.h"
 #include "bxdf/render/scene.h"
 
@@ -76,6 +77,19 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
       case GraphOp::Incoming: out[0] = ctx.incoming; break;
       case GraphOp::Image: {
         const Vec3 uv = in(0);
+        const RGBA c = textures[size_t(node.index)]->lookup(uv.x, uv.y, node.flag);
+        out[0] = Vec3(c.r, c.g, c.b);
+        out[1] = splat(c.a);
+        break;
+      }
+      case GraphOp::Environment: {
+        // Cycles' svm_node_tex_environment: the vector normalised (zero stays zero), then
+        // projected to image coordinates and looked up as an Image Texture is.
+        Vec3 dir = in(0);
+        if (!normalize_direction(dir)) dir = Vec3(0.0f, 0.0f, 0.0f);
+        const Point2 uv = EnvironmentProjection(node.mode) == EnvironmentProjection::MirrorBall
+                              ? direction_to_mirrorball(dir)
+                              : direction_to_equirect(dir);
         const RGBA c = textures[size_t(node.index)]->lookup(uv.x, uv.y, node.flag);
         out[0] = Vec3(c.r, c.g, c.b);
         out[1] = splat(c.a);

@@ -92,6 +92,8 @@ const std::vector<OpSpec>& op_specs() {
        {{"strength", Kind::Float, grey(1)}, {"distance", Kind::Float, grey(1)},
         {"height", Kind::Float, grey(1)}, {"normal", Kind::Vector, grey(0), true}},
        {{"normal", 0, Kind::Vector}}},
+      {"environment", GraphOp::Environment, {{"vector", Kind::Vector, grey(0)}},
+       {{"color", 0, Kind::Color}, {"alpha", 1, Kind::Float}}},
   };
   return specs;
 }
@@ -110,6 +112,10 @@ std::string got(const json& j) {
   if (text.size() > 60) text = text.substr(0, 57) + "...";
   return text;
 }
+
+// The ops that look a texture up (Image, Environment): their colour is unassociated from alpha
+// when their Alpha output is used.
+bool looks_up_texture(GraphOp op) { return op == GraphOp::Image || op == GraphOp::Environment; }
 
 struct NodeOutputs {
   const OpSpec* spec = nullptr;
@@ -135,13 +141,13 @@ class GraphReader {
     // An image's colour is unassociated from alpha only when its Alpha output is used (Cycles).
     for (size_t i = 0; i < outputs_.size(); ++i) {
       GraphNode& node = g_->nodes[node_of_[i]];
-      if (node.op != GraphOp::Image || !outputs_[i].alpha_used) continue;
+      if (!looks_up_texture(node.op) || !outputs_[i].alpha_used) continue;
       const TextureSettings& t = g_->textures[size_t(node.index)]->settings();
       node.flag = t.colorspace != TextureColorspace::NonColor &&
                   (t.alpha == TextureAlpha::Straight || t.alpha == TextureAlpha::Premultiplied);
     }
     for (size_t k = 0; k < g_->nodes.size(); ++k)  // bump copies read images as the originals do
-      if (g_->nodes[k].op == GraphOp::Image) g_->nodes[k].flag = g_->nodes[original_[k]].flag;
+      if (looks_up_texture(g_->nodes[k].op)) g_->nodes[k].flag = g_->nodes[original_[k]].flag;
     const json& closures = j.contains("closures") ? j["closures"] : json::array();
     if (!closures.is_array() || closures.size() > size_t(BSDF::kMaxComponents))
       fail(field + ".closures", "expected an array of at most " +
@@ -278,7 +284,7 @@ class GraphReader {
     for (const OutputSpec& o : source.spec->outputs) {
       if (out != o.name) continue;
       in.reg = source.first_register + o.offset;
-      if (source.spec->op == GraphOp::Image && o.offset == 1) source.alpha_used = true;
+      if (looks_up_texture(source.spec->op) && o.offset == 1) source.alpha_used = true;
       if (kind == Kind::Float && o.kind == Kind::Color) in.convert = GraphConvert::ColorToFloat;
       if (kind == Kind::Float && o.kind == Kind::Vector) in.convert = GraphConvert::VectorToFloat;
     }
@@ -350,8 +356,6 @@ class GraphReader {
       if (j["op"].is_string() && j["op"].get<std::string>() == s.name) spec = &s;
     }
     if (!spec) {
-      if (j["op"] == "environment")
-        fail(field + ".op", "'" + j["op"].get<std::string>() + "' is not supported by the renderer yet");
       fail(field + ".op", "expected one of {" + join(names) + "}, got " + got(j["op"]));
     }
     GraphNode node;
@@ -364,6 +368,10 @@ class GraphReader {
       case GraphOp::UV:
         node.index = take("map") ? integer(j["map"], field_of("map"), 0, 7) : 0;
         break;
+      case GraphOp::Environment:
+        if (take("projection"))
+          choice(j["projection"], field_of("projection"), {"equirectangular", "mirror_ball"}, &node.mode);
+        [[fallthrough]];
       case GraphOp::Image:
         if (!take("texture")) fail(field_of("texture"), "is missing");
         if (g_->textures.empty()) fail(field_of("texture"), "the graph declares no \"textures\"");
@@ -463,6 +471,11 @@ class GraphReader {
         uv.op = GraphOp::UV;
         uv.index = 0;
         node.in[i].reg = add_node(uv, op_specs()[1]);
+      } else if (spec->op == GraphOp::Environment && i == 0) {
+        // Cycles' default for an unlinked environment vector (LINK_POSITION): the position.
+        GraphNode position;
+        position.op = GraphOp::Position;
+        node.in[i].reg = add_node(position, op_specs()[4]);
       } else {
         node.in[i].constant = in.default_value;
       }

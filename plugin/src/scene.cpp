@@ -10,6 +10,7 @@
 #include <string>
 
 #include "bxdf/params.h"
+#include "bxdf/render/textured_emission.h"
 
 namespace bxdf::render {
 
@@ -315,16 +316,29 @@ void Scene::commit() {
   if (rtcGetDeviceError(e.device) != RTC_ERROR_NONE)
     throw std::runtime_error("Embree: building the BVH failed: " + embree_error(e.device));
 
-  // One mesh light per mesh that has emissive triangles.
+  // One mesh light per mesh that has emissive triangles, constant or textured.
   mesh_area_light_.assign(meshes_.size(), -1);
+  std::vector<Vec3> registers(MaterialGraph::kMaxRegisters);  // for the textured estimates
   for (size_t mi = 0; mi < meshes_.size(); ++mi) {
     const StoredMesh& m = meshes_[mi];
     Light area;
     area.type = LightType::Mesh;
+    area.mesh = static_cast<uint32_t>(mi);
     for (size_t t = 0; t < m.indices.size() / 3; ++t) {
       const uint32_t mat = m.material_indices.empty() ? m.material : m.material_indices[t];
-      const RGB& le = materials_[mat].emission;
-      if (le.is_black()) continue;
+      const Material& material = materials_[mat];
+      const bool textured = material.graph && !material.graph->emission_is_constant();
+      RGB le = material.emission;
+      if (textured) {
+        // The power estimate: the emission at the centroid, seen along the normal.
+        Hit centroid;
+        centroid.mesh = static_cast<uint32_t>(mi);
+        centroid.triangle = static_cast<uint32_t>(t);
+        centroid.b1 = centroid.b2 = 1.0f / 3.0f;
+        le = textured_emission(*this, centroid, surface_point(centroid).ng, registers.data());
+      } else if (le.is_black()) {
+        continue;
+      }
       EmissiveTriangle tri;
       tri.p0 = load3(m.positions, m.indices[3 * t]);
       tri.e1 = load3(m.positions, m.indices[3 * t + 1]) - tri.p0;
@@ -334,6 +348,8 @@ void Scene::commit() {
       if (!normalize_direction(n) || !(tri.area > 0.0f)) continue;  // degenerate: cannot emit
       tri.normal = n;
       tri.radiance = le;
+      tri.triangle = static_cast<uint32_t>(t);
+      tri.textured = textured;
       area.total_area += tri.area;
       area.cdf.push_back(area.total_area);
       area.triangles.push_back(tri);

@@ -15,7 +15,7 @@ import bpy
 import numpy as np
 import pytest
 
-from bxdf_lab import engine
+from bxdf_lab import engine, nodes
 from test_nodes import Tree
 from test_render import _render as render_rgba
 from test_render import _scene
@@ -110,6 +110,53 @@ def test_an_srgb_image_is_linearised_like_cycles(tmp_path):
     np.testing.assert_allclose(ours, cycles, rtol=2e-3, atol=1e-4)
 
 
+def _environment_file(tmp_path):
+    """A 7 × 5 float image of distinct colours for an Environment Texture: its middle row's
+    centres lie on the horizon (v = ½), where an unlinked Vector (the position on the z = 0
+    plane) looks, and with 7 columns no texel edge falls on the pixel grid's symmetry axes
+    (at multiples of 45° of azimuth), where Closest's choice would turn on the last bit."""
+    import OpenImageIO as oiio
+    pixels = np.random.default_rng(12).uniform(0.05, 0.95, (5, 7, 3)).astype(np.float32)
+    path = str(tmp_path / "environment.exr")
+    out = oiio.ImageOutput.create(path)
+    out.open(path, oiio.ImageSpec(7, 5, 3, "float"))
+    out.write_image(pixels)
+    out.close()
+    image = bpy.data.images.load(path)
+    image.colorspace_settings.name = "Linear"
+    return image
+
+
+# An Environment Texture inside a material (an Emission's colour), looked up by the world
+# position (its unlinked Vector) or by a direction made from the UVs, (u − ½, v − ½, −0.3),
+# which sweeps a cone of directions below the horizon across the image.
+@pytest.mark.parametrize("interpolation", ["Closest", "Linear", "Cubic"])
+@pytest.mark.parametrize("projection", ["EQUIRECTANGULAR", "MIRROR_BALL"])
+@pytest.mark.parametrize("vector", ["position", "uv_direction"])
+def test_an_environment_texture_in_a_material_matches_cycles(interpolation, projection, vector,
+                                                             tmp_path):
+    tree = Tree("environment in a material")
+    emission = tree.surface(tree.add("ShaderNodeEmission"))
+    node = tree.add("ShaderNodeTexEnvironment")
+    node.image, node.interpolation, node.projection = (_environment_file(tmp_path),
+                                                       interpolation, projection)
+    if vector == "uv_direction":
+        mapping = tree.add("ShaderNodeMapping")
+        mapping.inputs["Location"].default_value = (-0.5, -0.5, -0.3)
+        tree.link(tree.add("ShaderNodeTexCoord").outputs["UV"], mapping.inputs["Vector"])
+        tree.link(mapping.outputs[0], node.inputs["Vector"])
+    tree.link(node.outputs["Color"], emission.inputs["Color"])
+    scene = _camera_scene(tree.material, tmp_path)
+    ours = _render(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
+    assert engine.last_error == ""
+    assert nodes.translate(tree.material, write_files=False).warnings == []
+    cycles = _render(scene, "CYCLES", str(tmp_path / "cycles.exr"))
+    assert np.ptp(cycles) > 0.05  # the lookup does vary over the image
+    # The direction comes from the hit point, which the two renderers compute to a few ulps
+    # apart; the mirror ball's mapping magnifies that to ~1e-4 (one pixel in 768).
+    np.testing.assert_allclose(ours, cycles, rtol=5e-4, atol=5e-5)
+
+
 def _normal_texture(tmp_path):
     """A tangent-space normal map of tilted facets (Non-Color)."""
     ys, xs = np.mgrid[0:TEXELS, 0:TEXELS]
@@ -132,12 +179,23 @@ def _scale_object(scene, scale):
 
 
 # On Diffuse, Cycles dims light at grazing angles to the perturbed normal by its bump
-# shadowing term (kernel/closure/bsdf.h); on Glossy it does not.
-@pytest.mark.parametrize("bsdf", ["ShaderNodeBsdfGlossy", "ShaderNodeBsdfDiffuse"])
+# shadowing term (kernel/closure/bsdf.h); on Glossy it does not; on Principled it dims the
+# diffuse and sheen lobes (diffuse closures in Cycles) and not the specular one.
+NORMAL_MAPPED = {
+    "ShaderNodeBsdfGlossy": {"Color": (0.8, 0.6, 0.4, 1.0), "Roughness": 0.6},
+    "ShaderNodeBsdfDiffuse": {"Color": (0.8, 0.6, 0.4, 1.0), "Roughness": 0.6},
+    "ShaderNodeBsdfPrincipled": {"Base Color": (0.8, 0.6, 0.4, 1.0), "Roughness": 0.6,
+                                 "Sheen": 1.0, "Specular": 0.5},
+}
+
+
+@pytest.mark.parametrize("bsdf", list(NORMAL_MAPPED))
 @pytest.mark.parametrize("scale", [(1.0, 1.0, 1.0), (2.0, 0.5, 1.0)], ids=["unscaled", "scaled"])
 def test_a_normal_map_matches_cycles(bsdf, scale, tmp_path):
     tree = Tree("normal mapped")
-    closure = tree.surface(tree.add(bsdf, Color=(0.8, 0.6, 0.4, 1.0), Roughness=0.6))
+    closure = tree.surface(tree.add(bsdf))
+    for name, value in NORMAL_MAPPED[bsdf].items():
+        closure.inputs[name].default_value = value
     normal_map = tree.add("ShaderNodeNormalMap", Strength=0.8)
     image = tree.add("ShaderNodeTexImage")
     image.image, image.interpolation = _normal_texture(tmp_path), "Closest"

@@ -11,8 +11,9 @@ INTERPOLATIONS = {"Closest": "closest", "Linear": "linear", "Cubic": "cubic", "S
 EXTENSIONS = {"REPEAT": "repeat", "EXTEND": "extend", "CLIP": "clip"}
 
 
-def texture(scope, node):
-    """The texture record of the node's image, warning about what is not translated."""
+def texture(scope, node, extension=None):
+    """The texture record of the node's image, warning about what is not translated;
+    `extension` (a record value) for nodes without an Extension setting."""
     image = node.image
     path, why = image_files.locate(image, scope.translation.write_files)
     if path is None:
@@ -23,7 +24,7 @@ def texture(scope, node):
         scope.warn(f"colour space '{image.colorspace_settings.name}' of image '{image.name}' is "
                    "not translated; its values are read as linear")
         colorspace = "linear"
-    extension = EXTENSIONS.get(node.extension)
+    extension = extension or EXTENSIONS.get(node.extension)
     if extension is None:
         scope.warn(f"extension {node.extension} is not translated; repeat is used")
         extension = "repeat"

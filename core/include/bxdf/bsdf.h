@@ -42,6 +42,8 @@ class BSDF {
   // ParameterError past kMaxComponents, for a null pointer or a negative/non-finite weight.
   // `bump_shadowed`: the component is one of Cycles' diffuse closures, which Cycles darkens at
   // grazing light by bump_shadowing_term when its normal differs from the shading normal.
+  // A component with such lobes inside (BxDF::has_diffuse_closure_lobes: the Principled
+  // BSDF's diffuse and sheen) has just those lobes darkened so, whatever `bump_shadowed` says.
   void add(const BxDF* component, const RGB& weight = RGB(1.0f), const Frame* frame = nullptr,
            bool bump_shadowed = false);
 
@@ -85,7 +87,8 @@ class BSDF {
   RGB weights_[kMaxComponents];
   float sample_weights_[kMaxComponents] = {};
   Frame frames_[kMaxComponents];
-  bool bump_shadowed_[kMaxComponents] = {};
+  enum class BumpShadowing : uint8_t { None, Whole, DiffuseLobes };
+  BumpShadowing bump_shadowing_[kMaxComponents] = {};
   int count_ = 0;
 };
 

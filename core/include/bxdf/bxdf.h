@@ -73,6 +73,13 @@ class BxDF {
   virtual BxDFSample sample_f(const Vec3& wo, Point2 u) const = 0;
   virtual float pdf(const Vec3& wo, const Vec3& wi) const = 0;
 
+  // The part of f(wo, wi) that Cycles builds as diffuse closures (CLOSURE_IS_BSDF_DIFFUSE)
+  // inside a model that also has other lobes: the Principled BSDF's diffuse and sheen. Cycles
+  // darkens that part by bump_shadowing_term when the closure's normal is perturbed; the
+  // BSDF asks for it only when has_diffuse_closure_lobes(). Same argument rules as f.
+  virtual bool has_diffuse_closure_lobes() const { return false; }
+  virtual RGB diffuse_closure_f(const Vec3& /*wo*/, const Vec3& /*wi*/) const { return RGB(0.0f); }
+
   // ρhd(wo) = ∫ f |cos θi| dωi and ρhh; Monte Carlo (stratified, seeded) unless a model knows better.
   virtual RGB rho_hd(const Vec3& wo, int n_samples, uint64_t seed = 0) const;
   virtual RGB rho_hh(int n_samples, uint64_t seed = 0) const;

@@ -331,6 +331,22 @@ float CyclesPrincipled::density_upper(const Vec3& wo, const Vec3& wi, const Clos
   return sum / c.sample_total;
 }
 
+RGB CyclesPrincipled::diffuse_closure_f(const Vec3& wo_in, const Vec3& wi_in) const {
+  Vec3 wo = wo_in, wi = wi_in;
+  if (!normalize_direction(wo) || !normalize_direction(wi) || wo.z == 0.0f) return RGB(0.0f);
+  if (wo.z < 0.0f) {  // the back face: the lobes about the flipped normal, as eval does
+    wo.z = -wo.z;
+    wi.z = -wi.z;
+  }
+  // The closure weights do not depend on wo (closures() adds the same ones, same cut-off).
+  RGB sum(0.0f);
+  if (s_.has_diffuse)
+    sum += s_.base * (s_.diffuse_weight * cycles::principled_diffuse_f(wo, wi, s_.roughness));
+  if (s_.has_sheen)
+    sum += s_.sheen_color * (s_.sheen * s_.diffuse_weight * cycles::principled_sheen_f(wo, wi));
+  return sanitize_nonnegative(sum);
+}
+
 RGB CyclesPrincipled::eval_general(Vec3 wo, Vec3 wi) const {
   if (wo.z == 0.0f) return RGB(0.0f);
   const bool back = wo.z < 0.0f;

@@ -94,6 +94,10 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
   BxDFSample sample(Vec3 wo, Point2 u) const;
   float density(Vec3 wo, Vec3 wi) const;
 
+  // The diffuse and sheen lobes (Cycles' PRINCIPLED_DIFFUSE and PRINCIPLED_SHEEN closures).
+  bool has_diffuse_closure_lobes() const override { return s_.has_diffuse || s_.has_sheen; }
+  RGB diffuse_closure_f(const Vec3& wo, const Vec3& wi) const override;
+
   enum Closure {
     kDiffuseClosure,
     kSheenClosure,

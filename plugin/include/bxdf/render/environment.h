@@ -20,7 +20,7 @@
 
 #include "bxdf/math.h"
 #include "bxdf/spectrum.h"
-#include "bxdf/render/texture.h"  // TextureInterpolation (Cubic is looked up as Linear here)
+#include "bxdf/render/texture.h"  // the one image lookup (interpolate_texels) and its settings
 
 namespace bxdf::render {
 
@@ -69,7 +69,8 @@ class Environment {
   RGB lookup(float u, float v) const;
   void build_distribution();
 
-  EnvironmentSettings s_;
+  EnvironmentSettings s_;  // its image's pixels move into texels_
+  TexelGrid texels_;
   bool black_ = true;
   bool has_image_ = false;
   float integral_ = 0.0f;  // ∫ average(L) dω over the sphere
@@ -83,5 +84,7 @@ class Environment {
 // Cycles' equirectangular mapping: u = (π − atan2(y, x)) / 2π, v = 1 − θ/π (v = 1 at +Z).
 Point2 direction_to_equirect(const Vec3& dir);
 Vec3 equirect_to_direction(float u, float v);
+// Cycles' mirror-ball mapping (direction_to_mirrorball): the ball seen from −Y.
+Point2 direction_to_mirrorball(const Vec3& dir);
 
 }  // namespace bxdf::render

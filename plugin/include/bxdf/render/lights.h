@@ -9,7 +9,8 @@
 // - Area: a rectangle or an ellipse (Blender's square/rectangle and disk/ellipse) emitting from
 //   its front (the light's −Z) only, radiance P·colour/(4·area) (Cycles' eval_fac 1/(4A)).
 //   Rectangles are sampled by solid angle (Ureña et al. 2013, as Cycles), ellipses by area.
-// - Mesh: the emissive triangles of one mesh (an Emission shader), two-sided, sampled by area.
+// - Mesh: the emissive triangles of one mesh (an Emission shader), two-sided, sampled by area;
+//   a textured emission is evaluated at the sampled point (textured_emission.h).
 // The world is not a Light: see environment.h.
 //
 // All kinds live in one tagged struct and are sampled through a switch, so the per-sample path
@@ -31,8 +32,10 @@ enum class AreaShape { Rectangle, Ellipse };
 struct EmissiveTriangle {
   Vec3 p0, e1, e2;  // p0, p1 - p0, p2 - p0
   Vec3 normal;      // unit, cross(e1, e2) direction
-  RGB radiance;
+  RGB radiance;     // constant emission; textured: the power estimate only
   float area = 0.0f;
+  uint32_t triangle = 0;  // its index in the mesh
+  bool textured = false;  // the emission is evaluated where a sample lands
 };
 
 // Ray visibility of a light, as Blender's object and light settings give it.
@@ -62,6 +65,7 @@ struct Light {
   std::vector<EmissiveTriangle> triangles;
   std::vector<float> cdf;
   float total_area = 0.0f;
+  uint32_t mesh = 0;  // mesh: its index in the scene
 
   bool is_delta() const {
     return ((type == LightType::Point || type == LightType::Spot) && radius == 0.0f) ||
@@ -105,6 +109,11 @@ struct LightSample {
   Vec3 wi;         // unit, from the shading point towards the light
   float distance = 0.0f;  // to the light point; infinity for the sun
   float pdf = 0.0f;       // solid angle density (1 for delta lights); 0 = no sample
+  // Mesh lights: the sampled EmissiveTriangle (index in Light::triangles, or −1) and the
+  // point's barycentrics of its vertices 1 and 2 (as Hit's). A textured triangle's radiance
+  // here is its estimate; the caller evaluates the emission there.
+  int32_t triangle = -1;
+  float b1 = 0.0f, b2 = 0.0f;
 };
 
 LightSample sample_light(const Light& light, const Vec3& p, Point2 u);

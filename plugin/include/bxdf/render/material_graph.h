@@ -23,8 +23,11 @@ struct Hit;
 enum class GraphOp : uint8_t {
   Const, UV, Generated, Object, Position, Normal, Incoming, Image, Transform, MixRGB, Math,
   VectorMath, Invert, Gamma, BrightContrast, HSV, Separate, Combine, ColorRamp, Fresnel,
-  LayerWeight, NormalMap, Bump,
+  LayerWeight, NormalMap, Bump, Environment,
 };
+
+// The Environment Texture node's projections (GraphNode::mode of an Environment op).
+enum class EnvironmentProjection : uint8_t { Equirectangular, MirrorBall };
 
 // Registers hold a float as (f, f, f), colours and vectors as themselves; reading a colour or a
 // vector where a float is expected converts as Cycles does.
