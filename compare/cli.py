@@ -7,7 +7,7 @@ import json
 import os
 import sys
 
-from . import ENGINES, runner, scenes
+from . import ENGINES, jobs, runner, scenes
 
 
 def _override(text):
@@ -70,8 +70,9 @@ def main(argv=None):
                                 samples=args.spp or 32, blender=args.blender, timeout=args.timeout)
         print(f"report: {os.path.join(run_dir, 'index.html')}")
         return 0
-    if args.spp is not None and args.spp < 2:
-        raise SystemExit("--spp must be at least 2 (two half-sample renders)")
+    if args.spp is not None and args.spp < len(jobs.SEEDS):
+        raise SystemExit(f"--spp must be at least {len(jobs.SEEDS)} (that many renders with "
+                         f"different seeds share the samples), got {args.spp}")
     overrides = {}
     known = {m.name for name in args.scenes for m in scenes.get(name).materials()}
     for engine, material, param, value in args.override:

@@ -131,7 +131,8 @@ def main():
                 raise RuntimeError(f"{engine} wrote no image (render failed) for seed {seed}")
             meta["renders"].append({"seed": seed, "seconds": seconds,
                                     "image": os.path.basename(image)})
-        # One record for both halves: samples are per render, the full image has twice as many.
+        # One record for all seeds: samples are per render; the full image has len(seeds) times
+        # as many.
         meta["settings"].pop("seed", None)
         meta["settings"]["seeds"] = job["seeds"]
         meta["settings"]["samples_per_render"] = meta["settings"].pop("samples")

@@ -1,9 +1,11 @@
 """Render settings for each engine, so that all three render the same thing (runs inside Blender).
 
 Facts from reference/renderers.md: Cycles with radius-0 lights, no clamping, no denoising, no
-adaptive sampling, pixel-centre sampling through GAUSSIAN width 0.01; POV-Ray with linear 16-bit
-PNG output (+FN16 File_Gamma=1.0), no anti-aliasing, radiosity only where the scene asks for global
-illumination. (POV-Ray's light calibration belongs to the material set-up: see material_setup.)"""
+adaptive sampling, (nearly) pixel-centre sampling through GAUSSIAN width 0.01, and BXDF_LAB with
+the same Gaussian (not PIXEL_CENTER: Cycles' sigma = 0.0025 px shows at edges by pixel centres);
+POV-Ray with linear 16-bit PNG output (+FN16 File_Gamma=1.0), no anti-aliasing, radiosity only
+where the scene asks for global illumination. (POV-Ray's light calibration belongs to the
+material set-up: see material_setup.)"""
 from __future__ import annotations
 
 import math
@@ -32,6 +34,10 @@ def common_settings(spec: SceneSpec):
     image.exr_codec = "ZIP"
 
 
+# Cycles' narrowest filter (its minimum width): camera rays within about 0.01 px of pixel centres.
+CYCLES_FILTER_WIDTH = 0.01
+
+
 def configure_cycles(spec: SceneSpec, spp: int, seed: int, threads: int) -> dict:
     scene = bpy.context.scene
     scene.render.engine = "CYCLES"
@@ -52,11 +58,11 @@ def configure_cycles(spec: SceneSpec, spp: int, seed: int, threads: int) -> dict
     for name in ("diffuse_bounces", "glossy_bounces", "transmission_bounces", "volume_bounces"):
         setattr(cycles, name, spec.max_bounces)
     cycles.transparent_max_bounces = max(spec.max_bounces, 1)
-    cycles.pixel_filter_type = "GAUSSIAN"   # BOX ignores the width; 0.01 = pixel centre
-    cycles.filter_width = 0.01
+    cycles.pixel_filter_type = "GAUSSIAN"   # BOX ignores the width; 0.01 = nearly the pixel centre
+    cycles.filter_width = CYCLES_FILTER_WIDTH
     _threads(scene, threads)
     return {"samples": spp, "seed": seed, "max_bounces": spec.max_bounces,
-            "filter": "GAUSSIAN 0.01", "threads": threads}
+            "filter": f"GAUSSIAN {CYCLES_FILTER_WIDTH}", "threads": threads}
 
 
 def configure_bxdf_lab(spec: SceneSpec, spp: int, seed: int, threads: int) -> dict:
@@ -68,10 +74,14 @@ def configure_bxdf_lab(spec: SceneSpec, spp: int, seed: int, threads: int) -> di
     settings.samples = spp
     settings.seed = seed
     settings.max_bounces = spec.max_bounces
-    settings.pixel_filter = "PIXEL_CENTER"
+    # Cycles' filter as configure_cycles sets it, not PIXEL_CENTER: Gaussian width 0.01 still
+    # spreads Cycles' camera rays by sigma = 0.0025 px, so an edge within ~0.01 px of a pixel
+    # centre is partly covered in Cycles and all-or-nothing at the exact centre (z 23 at 96 px).
+    settings.pixel_filter = "GAUSSIAN"
+    settings.filter_width = CYCLES_FILTER_WIDTH
     settings.threads = threads
     return {"samples": spp, "seed": seed, "max_bounces": spec.max_bounces,
-            "filter": "PIXEL_CENTER", "threads": threads}
+            "filter": f"GAUSSIAN {CYCLES_FILTER_WIDTH}", "threads": threads}
 
 
 def configure_povray(spec: SceneSpec, work_dir: str, basename: str, threads: int) -> dict:

@@ -61,9 +61,9 @@ def _load_engine(run_dir, spec, engine, result):
             entry["f_from"] = meta["f_from"]
         variance, truth = None, None
         if engine in STOCHASTIC:
-            halves = [imageio.read(os.path.join(render_dir, r["image"])) for r in meta["renders"]]
-            image = (halves[0] + halves[1]) / 2.0
-            variance = metrics.variance_of_mean(halves[0], halves[1])
+            renders = [imageio.read(os.path.join(render_dir, r["image"])) for r in meta["renders"]]
+            image = sum(renders) / len(renders)
+            variance = metrics.variance_of_mean(*renders)
             path = os.path.join(render_dir, f"{engine}.exr")
             imageio.write_exr(path, image)
         else:
@@ -99,7 +99,7 @@ def analyse(run_dir, spec, results):
             truth = analytic_truth
         engines[engine] = entry
 
-    # Render seconds (both seeds, the same samples and threads) over Cycles': below 1 is faster.
+    # Render seconds (all seeds, the same samples and threads) over Cycles': below 1 is faster.
     cycles_seconds = engines.get("CYCLES", {}).get("seconds")
     for entry in engines.values():
         if cycles_seconds and entry.get("seconds"):
@@ -237,7 +237,8 @@ def render_html(summary):
              "difference must be Monte Carlo noise; a failing exact pairing is flagged red) or "
              "<b>approximate</b> (closest mapping: the difference is the finding). z-test: pixel "
              f"fails when |a−b| &gt; {summary['thresholds']['z_crit']:g} σ in a channel, σ² = "
-             "noise variance of both images (from two half-sample renders with different seeds) + "
+             "noise variance of both images (from four quarter-sample renders with different "
+             "seeds) + "
              "(against ANALYTIC) the closed form's change under the tessellated spheres' normal "
              f"error² + ({summary['thresholds']['rel_tol']:g}·value + "
              f"{summary['thresholds']['abs_tol']:g})²"
@@ -263,7 +264,7 @@ def _run_settings(settings):
     return (f"<p class=\"note\">Wall time {_num(wall, '{:.0f}')} s on {_e(where)}, "
             f"{_e(settings['threads_per_job'] or 'all')} thread(s) per render; spp "
             f"{_e(settings['spp'] or 'per scene')}, resolution {_e(resolution)}. "
-            "Time / Cycles = the engine's render seconds (both half-sample renders, through "
+            "Time / Cycles = the engine's render seconds (all four quarter-sample renders, through "
             "Blender's render operator, scene export included) / Cycles' (below 1: faster).</p>"
             + _overrides_html(settings.get("overrides") or {}))
 

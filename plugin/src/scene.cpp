@@ -463,13 +463,7 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
     sp.uv = Point2(hit.b1, hit.b2);
   }
   if (!have_tangent) {
-    // Cycles' default tangent (a radial Tangent node about the object's Z axis): from the
-    // generated coordinates, taken to world space as a normal is (svm_node_tangent).
-    const Vec3 g = generated(hit, sp.p);
-    const Vec3 t(-(g.y - 0.5f), g.x - 0.5f, 0.0f);
-    const std::array<float, 12>& w = m.world_to_object;
-    sp.tangent = Vec3(w[0] * t.x + w[4] * t.y + w[8] * t.z, w[1] * t.x + w[5] * t.y + w[9] * t.z,
-                      w[2] * t.x + w[6] * t.y + w[10] * t.z);
+    sp.tangent = radial_tangent(hit, sp.p);
   }
   sp.material = m.material_indices.empty() ? m.material : m.material_indices[hit.triangle];
   return sp;
@@ -531,6 +525,13 @@ Vec3 Scene::normal_to_object(const Hit& hit, const Vec3& n) const {
   const std::array<float, 9>& a = meshes_[hit.mesh].object_linear;  // Aᵀ n
   return {a[0] * n.x + a[3] * n.y + a[6] * n.z, a[1] * n.x + a[4] * n.y + a[7] * n.z,
           a[2] * n.x + a[5] * n.y + a[8] * n.z};
+}
+
+Vec3 Scene::radial_tangent(const Hit& hit, const Vec3& p) const {
+  // svm_node_tangent's radial mode about Z, on generated coordinates, taken to world space as
+  // a normal is (Cycles does the same: object_normal_transform).
+  const Vec3 g = generated(hit, p);
+  return normal_to_world(hit, Vec3(-(g.y - 0.5f), g.x - 0.5f, 0.0f));
 }
 
 Vec3 Scene::normal_to_world(const Hit& hit, const Vec3& n) const {
