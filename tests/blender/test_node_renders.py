@@ -294,6 +294,39 @@ def test_a_holdout_mix_matches_cycles(tmp_path):
     np.testing.assert_allclose(ours, cycles, rtol=5e-3, atol=1e-4)
 
 
+# Cycles honours a holdout while the path keeps PATH_RAY_TRANSPARENT_BACKGROUND: camera rays and
+# their continuations through a Transparent BSDF (integrator/shade_surface.h, path_state.h), the
+# pixel turning transparent by the holdout weight times the path's throughput. Through any
+# other bounce (here a sharp Refraction BSDF of IOR 1, which passes rays just as straight) the
+# holdout is not honoured: a pure Holdout then shades black and the pixel stays opaque. The same
+# flag makes the background seen through a Transparent BSDF transparency on a transparent film
+# (shade_background.h), while seen through the refraction it is the world's light.
+@pytest.mark.parametrize("behind", ["holdout", "nothing"])
+@pytest.mark.parametrize("cover", ["ShaderNodeBsdfTransparent", "ShaderNodeBsdfRefraction"])
+def test_a_holdout_behind_a_transparent_surface_matches_cycles(cover, behind, tmp_path):
+    tree = Tree("holdout behind")
+    tree.surface(tree.add("ShaderNodeHoldout"))
+    scene = _camera_scene(tree.material, tmp_path)
+    scene.render.film_transparent = True
+    scene.bxdf_lab_render.max_bounces = scene.cycles.max_bounces = 2
+    front = Tree("cover")
+    node = front.surface(front.add(cover, Color=(0.5, 0.7, 0.9, 1.0)))
+    if cover == "ShaderNodeBsdfRefraction":
+        node.distribution, node.inputs["IOR"].default_value = "SHARP", 1.0
+    plane = bpy.data.objects["plane"]
+    cover_object = bpy.data.objects.new("cover", plane.data.copy())
+    cover_object.data.materials[0] = front.material
+    cover_object.location.z = 0.5
+    scene.collection.objects.link(cover_object)
+    plane.hide_render = behind == "nothing"
+    ours = render_rgba(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
+    assert engine.last_error == ""
+    cycles = render_rgba(scene, "CYCLES", str(tmp_path / "cycles.exr"))
+    expected_alpha = 1.0 - (0.5 + 0.7 + 0.9) / 3.0 if cover == "ShaderNodeBsdfTransparent" else 1.0
+    np.testing.assert_allclose(cycles[..., 3], expected_alpha, rtol=1e-4)
+    np.testing.assert_allclose(ours, cycles, rtol=1e-4, atol=1e-5)
+
+
 # ---- value nodes: an Emission colour computed from the UVs, seen at pixel centres --------------
 
 def _uv(tree):
