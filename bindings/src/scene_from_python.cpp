@@ -557,6 +557,9 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
     for (py::ssize_t i = 0; i < im.shape(0); ++i) {
       const std::string p = item_path(key_path(root, "instance_matrix"), static_cast<size_t>(i));
       instance_matrix.push_back(checked_matrix(ix.data() + 16 * i, p, true));
+      for (double x : instance_matrix.back())  // the renderer's coordinate range (ray.h)
+        if (std::abs(x) > render::kMaxSceneCoordinate)
+          refuse(p, "has " + num(x) + "; expected entries in [-1e9, 1e9]");
     }
   }
 
@@ -582,24 +585,51 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
         welded[i] = weld_corners(meshes[i].arrays);
         apply_graph_attributes(meshes[i].graph_attributes, welded[i]);
       }
-    auto add = [&](const Mesh& mesh, const MeshInput& in, const std::string& what) {
-      if (mesh.num_triangles() == 0) return;
+    auto add = [&](const Mesh& mesh, const MeshInput& in, const std::string& what, bool as_instanced) -> int64_t {
+      if (mesh.num_triangles() == 0) return -1;
       try {
         render::MeshView view = mesh.view();
         view.visibility = in.visibility;
         view.terminator = in.terminator;
-        scene.add_mesh(view);
+        return static_cast<int64_t>(as_instanced ? scene.add_instanced_mesh(view) : scene.add_mesh(view));
       } catch (const std::invalid_argument& e) {
         refuse(what, e.what());
       }
     };
     if (instanced) {
+      // A mesh placed more than once is stored once and drawn through Embree instances; one
+      // placed once (or by a singular matrix, which has no object space) is moved into world
+      // space, as Cycles applies the transform of an object whose geometry is not shared.
+      auto invertible = [](const std::array<double, 16>& m) {
+        const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+                           m[2] * (m[4] * m[9] - m[5] * m[8]);
+        return std::abs(det) > 1e-30;
+      };
+      std::vector<size_t> placements(welded.size(), 0);
       for (size_t i = 0; i < instance_mesh.size(); ++i)
-        add(transformed(welded[static_cast<size_t>(instance_mesh[i])], instance_matrix[i]),
-            meshes[static_cast<size_t>(instance_mesh[i])], item_path(key_path(root, "instance_mesh"), i));
+        if (invertible(instance_matrix[i])) ++placements[static_cast<size_t>(instance_mesh[i])];
+      std::vector<int64_t> scene_mesh(welded.size(), -1);
+      for (size_t m = 0; m < welded.size(); ++m)
+        if (placements[m] > 1)
+          scene_mesh[m] = add(welded[m], meshes[m], item_path(key_path(root, "meshes"), m), true);
+      for (size_t i = 0; i < instance_mesh.size(); ++i) {
+        const size_t m = static_cast<size_t>(instance_mesh[i]);
+        if (scene_mesh[m] < 0 || !invertible(instance_matrix[i])) {
+          add(transformed(welded[m], instance_matrix[i]), meshes[m],
+              item_path(key_path(root, "instance_mesh"), i), false);
+          continue;
+        }
+        float rows[12];
+        for (int k = 0; k < 12; ++k) rows[k] = static_cast<float>(instance_matrix[i][static_cast<size_t>(k)]);
+        try {
+          scene.add_instance(static_cast<uint32_t>(scene_mesh[m]), rows);
+        } catch (const std::invalid_argument& e) {
+          refuse(item_path(key_path(root, "instance_matrix"), i), e.what());
+        }
+      }
     } else {
       for (size_t i = 0; i < welded.size(); ++i) {
-        add(welded[i], meshes[i], item_path(key_path(root, "meshes"), i));
+        add(welded[i], meshes[i], item_path(key_path(root, "meshes"), i), false);
         welded[i] = Mesh();  // the scene holds its own copy: free this one at once
       }
     }

@@ -241,7 +241,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
       } else {
         // Textured emission is found by BSDF sampling alone (it is not an area light).
         const bool textured = mat.graph && !mat.graph->emission_is_constant();
-        const int li = textured ? -1 : scene_.area_light_of_mesh(hit.mesh);
+        const int li = textured ? -1 : scene_.area_light_of(hit);
         const float lp = li < 0 ? 0.0f
                                 : scene_.light_sampler().probability(size_t(li)) *
                                       mesh_light_pdf(lights[size_t(li)], prev_p, sp.p, sp.ng);
