@@ -167,9 +167,28 @@ uint32_t Scene::add_material(Material material) {
   return static_cast<uint32_t>(materials_.size() - 1);
 }
 
-uint32_t Scene::add_mesh(const MeshView& m) { return store_mesh(m, false); }
+uint32_t Scene::add_mesh(const MeshView& m) { return store_mesh(m, false, nullptr); }
 
-uint32_t Scene::add_instanced_mesh(const MeshView& m) { return store_mesh(m, true); }
+uint32_t Scene::add_instanced_mesh(const MeshView& m) { return store_mesh(m, true, nullptr); }
+
+uint32_t Scene::add_mesh(Mesh&& mesh) { return store_mesh(mesh.view(), false, &mesh); }
+
+uint32_t Scene::add_instanced_mesh(Mesh&& mesh) { return store_mesh(mesh.view(), true, &mesh); }
+
+namespace {
+
+// Takes the owned vector (its buffer, which `view` points into, moves along unchanged) or
+// copies the view's `count` floats or indices.
+template <typename T>
+void take_or_copy(std::vector<T>* owned, const T* view, size_t count, std::vector<T>* out) {
+  if (owned && owned->data() == view && owned->size() == count) {
+    *out = std::move(*owned);
+  } else {
+    out->assign(view, view + count);
+  }
+}
+
+}  // namespace
 
 uint32_t Scene::add_instance(uint32_t mesh, const float* object_to_world) {
   const std::string who = "instance " + std::to_string(instances_.size());
@@ -190,7 +209,7 @@ uint32_t Scene::add_instance(uint32_t mesh, const float* object_to_world) {
   return static_cast<uint32_t>(instances_.size() - 1);
 }
 
-uint32_t Scene::store_mesh(const MeshView& m, bool instanced) {
+uint32_t Scene::store_mesh(const MeshView& m, bool instanced, Mesh* owned) {
   if (committed_) throw ParameterError("add_mesh: the scene is already committed");
   const std::string who = "mesh " + std::to_string(meshes_.size());
   if (instanced && m.object_to_world)
@@ -205,14 +224,14 @@ uint32_t Scene::store_mesh(const MeshView& m, bool instanced) {
   StoredMesh s;
   s.instanced = instanced;
   s.num_vertices = m.num_vertices;
-  s.positions.reserve(3 * m.num_vertices + 1);
-  s.positions.assign(m.positions, m.positions + 3 * m.num_vertices);
+  take_or_copy(owned ? &owned->positions : nullptr, m.positions, 3 * m.num_vertices, &s.positions);
+  s.positions.reserve(3 * m.num_vertices + 1);  // a no-op when the owner left room for the pad
   for (size_t i = 0; i < s.positions.size(); ++i)
     if (!(std::fabs(s.positions[i]) <= kMaxSceneCoordinate))  // NaN fails too
       throw ParameterError(who + ": positions[" + std::to_string(i / 3) + "] has the coordinate " +
                            std::to_string(s.positions[i]) + ", outside [-1e9, 1e9] m");
   if (m.normals) {
-    s.normals.assign(m.normals, m.normals + 3 * m.num_vertices);
+    take_or_copy(owned ? &owned->normals : nullptr, m.normals, 3 * m.num_vertices, &s.normals);
     for (size_t i = 0; i < m.num_vertices; ++i) {
       Vec3 n = load3(s.normals, static_cast<uint32_t>(i));
       // A zero or broken normal falls back to the face normal at shading time.
@@ -221,13 +240,13 @@ uint32_t Scene::store_mesh(const MeshView& m, bool instanced) {
     }
   }
   if (m.uvs) {
-    s.uvs.assign(m.uvs, m.uvs + 2 * m.num_vertices);
+    take_or_copy(owned ? &owned->uvs : nullptr, m.uvs, 2 * m.num_vertices, &s.uvs);
     for (size_t i = 0; i < s.uvs.size(); ++i)
       if (!std::isfinite(s.uvs[i]))
         throw ParameterError(who + ": uvs[" + std::to_string(i / 2) + "] is not finite");
   }
   add_graph_attributes(m, who, s);
-  s.indices.assign(m.indices, m.indices + 3 * m.num_triangles);
+  take_or_copy(owned ? &owned->indices : nullptr, m.indices, 3 * m.num_triangles, &s.indices);
   for (size_t i = 0; i < s.indices.size(); ++i)
     if (s.indices[i] >= m.num_vertices)
       throw ParameterError(who + ": indices[" + std::to_string(i / 3) + "] has vertex " +
@@ -243,7 +262,8 @@ uint32_t Scene::store_mesh(const MeshView& m, bool instanced) {
   s.visibility = m.visibility;
   s.terminator = m.terminator;
   if (m.material_indices) {
-    s.material_indices.assign(m.material_indices, m.material_indices + m.num_triangles);
+    take_or_copy(owned ? &owned->material_indices : nullptr, m.material_indices, m.num_triangles,
+                 &s.material_indices);
     for (size_t i = 0; i < s.material_indices.size(); ++i)
       if (s.material_indices[i] >= materials_.size())
         throw ParameterError(who + ": material_indices[" + std::to_string(i) + "] is " +

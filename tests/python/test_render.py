@@ -445,6 +445,11 @@ BAD_SCENES = [
      r"scene\['meshes'\]\[0\]\['triangles'\]: has dtype float32; expected an integer array"),
     ("triangles range", _set(["meshes", 0, "triangles", 3, 1], 10_000),
      r"scene\['meshes'\]\[0\]\['triangles'\]: index 10000 out of range \[0, 266\) \(row 3\)"),
+    # Indices are read as int32 (Blender's type, used in place); wider ones must fit, not wrap.
+    ("triangles past 32 bits", _set(["meshes", 0, "triangles"], np.where(np.arange(3) == 1, 2**40 + 1, uv_sphere()[1])),
+     r"scene\['meshes'\]\[0\]\['triangles'\]: has index 1099511627777, outside the 32-bit range"),
+    ("uint64 indices past 32 bits", _set(["meshes", 0, "uv_indices"], np.full((N_TRI, 3), 2**63, np.uint64)),
+     r"scene\['meshes'\]\[0\]\['uv_indices'\]: has index 9223372036854775808, outside the 32-bit range"),
     ("normal index range", _set(["meshes", 0, "normal_indices", 7, 2], 266),
      r"scene\['meshes'\]\[0\]\['normal_indices'\]: index 266 out of range \[0, 266\) \(row 7\)"),
     ("normal_indices rows", _set(["meshes", 0, "normal_indices"], np.zeros((3, 3), np.int32)),

@@ -60,6 +60,11 @@ class Scene {
   // one BVH). Its object_to_world must be null; visibility and terminator offsets apply to
   // every placement. Returns its index (a mesh index, as add_mesh's).
   uint32_t add_instanced_mesh(const MeshView& mesh);
+  // The same, taking the mesh's arrays over instead of copying them (the mesh is left empty or
+  // partly emptied): for callers that built a mesh only to hand it over, at 10M triangles a
+  // copy is hundreds of megabytes.
+  uint32_t add_mesh(Mesh&& mesh);
+  uint32_t add_instanced_mesh(Mesh&& mesh);
   // Places an instanced mesh with a 3×4 row-major object → world matrix (finite, invertible);
   // returns the instance's index. Throws ParameterError naming the mesh or the matrix.
   uint32_t add_instance(uint32_t mesh, const float* object_to_world);
@@ -155,7 +160,7 @@ class Scene {
   };
   struct EmbreeState;
   static void add_graph_attributes(const MeshView& mesh, const std::string& who, StoredMesh& s);
-  uint32_t store_mesh(const MeshView& mesh, bool instanced);
+  uint32_t store_mesh(const MeshView& mesh, bool instanced, Mesh* owned);
   // The placement a hit's mesh-space data moves to world space by: null for meshes stored in
   // world space.
   const ObjectTransform* placement(const Hit& hit) const {
