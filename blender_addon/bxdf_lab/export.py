@@ -10,7 +10,8 @@ so it can be tested, pickled, or handed to the renderer's binding unchanged.
                   "triangles": (T, 3) int32 indices into positions,
                   "normals": (N, 3) float32 and "normal_indices": (T, 3) int32: the shading
                       normal at corner k of triangle t is normals[normal_indices[t, k]] (smooth,
-                      flat, auto-smooth or custom normals, as Blender shades them),
+                      flat, auto-smooth or custom normals, as Blender shades them); both None
+                      when every face is flat (each triangle shaded with its own normal),
                   "uvs": (U, 2) float32 and "uv_indices": (T, 3) int32, or both None without a
                       UV map,
                   "material_indices": (T,) int32 into "materials", -1 = no material}],
@@ -117,8 +118,10 @@ def mesh_arrays(mesh):
             mesh.polygons.foreach_get("normal", polygon_normals)
             flat_index = (n_vertices + triangle_polygon)[:, None]
             if not smooth.any():
-                normals = polygon_normals.reshape(n_polygons, 3)
-                normal_indices = np.repeat(triangle_polygon[:, None], 3, axis=1)
+                # All flat: no normals at all. The renderer shades each triangle with its own
+                # normal, as Cycles does for flat faces, and welding splits no vertex by normal
+                # (a flat mesh stored with face normals per corner takes three times the memory).
+                normals = normal_indices = None
             else:
                 normals = np.concatenate([vertex_normals, polygon_normals.reshape(n_polygons, 3)])
                 normal_indices = np.where(smooth[triangle_polygon][:, None], triangles, flat_index)
@@ -134,7 +137,7 @@ def mesh_arrays(mesh):
         "positions": positions.reshape(n_vertices, 3),
         "triangles": triangles,
         "normals": normals,
-        "normal_indices": np.ascontiguousarray(normal_indices, dtype=np.int32),
+        "normal_indices": None if normal_indices is None else np.ascontiguousarray(normal_indices, dtype=np.int32),
         "uvs": uvs,
         "uv_indices": uv_indices,
         "material_indices": polygon_material[triangle_polygon],
