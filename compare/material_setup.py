@@ -121,8 +121,11 @@ def _read_back(material, engine) -> str:
         if pov.transparency_method == "RAYTRACE" and pov.use_transparency:
             text += f", refraction ior {material.pov_raytrace_transparency.ior:.4g}"
         return text
-    if engine == "BXDF_LAB" and getattr(material.bxdf_lab, "source", "") != "MODEL":
-        from bxdf_lab import nodes  # noqa: PLC0415 (only inside Blender with the add-on)
+    if engine != "BXDF_LAB":
+        return "bxdf_lab: the model itself"
+    # The add-on's own rule (an unset source is inferred from the stored settings).
+    from bxdf_lab import material_source, nodes  # noqa: PLC0415 (only inside Blender)
+    if material_source.source(material) != "MODEL":
         return "bxdf_lab: node translation (" + "; ".join(
             f"{e['node']}: {e['status']}" for e in nodes.material_coverage(material)) + ")"
     return "bxdf_lab: the model itself"

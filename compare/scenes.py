@@ -245,6 +245,19 @@ def sweep_principled_multiscatter():
         lights=(), world_color=(1.0, 1.0, 1.0))
 
 
+def sweep_principled_multiscatter_direct():
+    """The same spheres under a point light, direct light only: Cycles evaluates its walk and
+    never samples it, so its image converges to the walk's expectation, and so does BXDF_LAB's
+    (its walks salted per sample, multiscatter_ggx.h): an exact pairing."""
+    columns = [{"metallic": 1.0, "base_color": (0.95, 0.95, 0.95), "roughness": r}
+               for r in (0.3, 0.5, 0.7, 0.9)] + [{"roughness": 0.6}]
+    return _principled_grid(
+        "sweep_principled_multiscatter_direct",
+        "Cycles Principled under a point light: GGX (top row) against Multiscatter GGX (bottom "
+        "row); white metal at roughness 0.3-0.9 and a dielectric at roughness 0.6; direct light",
+        [columns, [{**c, "distribution": "multi_ggx"} for c in columns]], spp=64)
+
+
 def principled_clearcoat_world():
     """Clearcoat spheres in a white world (no lights): the light is found by sampling, where
     Cycles' clearcoat reports GTR1's pdf for GGX samples (pairings.cycles_quirks). The top row
@@ -306,7 +319,7 @@ SCENES = {f().name: f for f in (
     sweep_oren_nayar_sigma, cornell, sweep_principled_metallic_roughness,
     sweep_principled_lobes, lit_cycles_glossy_ashikhmin_shirley, lit_cycles_velvet,
     cycles_glass_room, sweep_principled_transmission, sweep_principled_multiscatter,
-    principled_clearcoat_world)}
+    sweep_principled_multiscatter_direct, principled_clearcoat_world)}
 SCENES.update({f().name: f for f in LIGHT_SCENES})
 
 DEFAULT_SCENES = tuple(SCENES) + tuple(f().name for f in DEFAULT_NODE_SCENES)

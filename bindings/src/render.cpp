@@ -225,10 +225,12 @@ for the partial images too.
   color + weight·image(matrix·ω). Other keys (``"warnings"``, names, ...) are ignored.
 
 ``settings`` (dict or None; unknown keys are refused): ``samples`` (16) per pixel, ``max_bounces``
-(8; 0 = direct light only), ``pixel_filter`` ("box", "gaussian" or "pixel_center", any case;
-Gaussian), ``filter_width`` (1.5 px), ``threads`` (0 = all cores), ``seed`` (0), ``tile_size`` (16),
-``samples_per_pass`` (0 = automatic), ``russian_roulette_depth`` (3), ``transparent_background``
-(False).
+(8; 0 = direct light only), ``pixel_filter`` ("box", "gaussian", "blackman_harris" or
+"pixel_center", any case; Blackman-Harris, Cycles' default), ``filter_width`` (1.5 px),
+``threads`` (0 = all cores), ``seed`` (0), ``tile_size`` (16), ``samples_per_pass`` (0 =
+automatic), ``russian_roulette_depth`` (3), ``transparent_max_bounces`` (8: Cycles' setting;
+passes through Transparent BSDFs are not bounces, and the surface after this many + 1 passes adds
+only its emission), ``transparent_background`` (False).
 
 ``on_progress(done, total, image)`` is called on the calling thread, holding the GIL, while the
 render runs on C++ threads: ``done``/``total`` count tiles over the whole render; ``image`` is the
@@ -272,7 +274,7 @@ void bind_render(py::module_& m) {
          bool return_stats) {
         SceneFromPython s = scene_from_python(scene);
         render::RenderSettings rs;
-        rs.filter = render::FilterType::Gaussian;  // Blender's defaults
+        rs.filter = render::FilterType::BlackmanHarris;  // Cycles' defaults
         rs.filter_width = 1.5f;
         rs.width = s.width;
         rs.height = s.height;

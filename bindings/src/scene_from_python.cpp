@@ -674,13 +674,15 @@ void apply_render_settings(const py::handle& settings, render::RenderSettings& s
   const py::dict d = as_dict(settings, root);
   static const char* const kKnown =
       "'samples', 'max_bounces', 'pixel_filter', 'filter_width', 'threads', 'seed', 'tile_size', "
-      "'samples_per_pass', 'russian_roulette_depth', 'transparent_background'";
+      "'samples_per_pass', 'russian_roulette_depth', 'transparent_max_bounces', "
+      "'transparent_background'";
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
     const std::string path = root + "['" + key + "']";
     const py::handle v = item.second;
     if (key == "samples") s.samples_per_pixel = static_cast<int>(integer(v, path, 1, 1 << 24));
     else if (key == "max_bounces") s.max_bounces = static_cast<int>(integer(v, path, 0, 1 << 16));
+    else if (key == "transparent_max_bounces") s.transparent_max_bounces = static_cast<int>(integer(v, path, 0, 1024));
     else if (key == "russian_roulette_depth") s.russian_roulette_depth = static_cast<int>(integer(v, path, 0, 1 << 16));
     else if (key == "threads") s.threads = static_cast<int>(integer(v, path, 0, 1 << 16));
     else if (key == "seed") s.seed = static_cast<uint64_t>(integer(v, path, 0, std::numeric_limits<long long>::max()));
@@ -691,11 +693,12 @@ void apply_render_settings(const py::handle& settings, render::RenderSettings& s
       if (!PyBool_Check(v.ptr())) refuse(path, short_repr(v) + " is not a bool; expected True or False");
       s.transparent_background = v.cast<bool>();
     } else if (key == "pixel_filter") {
-      const std::string name = lower(text(v, path, "'box', 'gaussian' or 'pixel_center'"));
-      if (name == "box") s.filter = render::FilterType::Box;
-      else if (name == "gaussian") s.filter = render::FilterType::Gaussian;
-      else if (name == "pixel_center" || name == "pixel_centre" || name == "center") s.filter = render::FilterType::PixelCenter;
-      else refuse(path, "'" + name + "' is unknown; expected 'box', 'gaussian' or 'pixel_center'");
+      const std::string name = lower(text(v, path, render::kFilterNames));
+      try {
+        s.filter = render::parse_filter(name);
+      } catch (const ParameterError&) {
+        refuse(path, "'" + name + "' is unknown; expected " + render::kFilterNames);
+      }
     } else {
       refuse(path, "is not a setting; expected one of " + std::string(kKnown));
     }

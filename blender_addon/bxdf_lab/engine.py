@@ -105,7 +105,8 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
                 cancelled = cancel_requested(self)
                 return not cancelled
 
-            settings = renderer.settings_dict(scene.bxdf_lab_render, purpose)
+            settings = renderer.settings_dict(scene.bxdf_lab_render, purpose,
+                                              renderer.transparent_max_bounces(scene))
             image, stats = renderer.render(data, settings, on_progress)
             for warning in stats.get("warnings", []):
                 self._warn(report, warning)

@@ -23,9 +23,11 @@ class BXDFLAB_PG_render_settings(bpy.types.PropertyGroup):
                              description="Longest path; 0 = direct light only", default=8, min=0,
                              max=1024, soft_max=64)
     pixel_filter: EnumProperty(
-        name="Pixel Filter", default="GAUSSIAN",
+        name="Pixel Filter", default="BLACKMAN_HARRIS",
         items=[("BOX", "Box", "Uniform over the pixel"),
-               ("GAUSSIAN", "Gaussian", "Gaussian of the given width (Cycles' default filter)"),
+               ("GAUSSIAN", "Gaussian", "Gaussian of the given width, as Cycles' Gaussian"),
+               ("BLACKMAN_HARRIS", "Blackman-Harris",
+                "Blackman-Harris window of the given width (Cycles' default filter)"),
                ("PIXEL_CENTER", "Pixel Centre", "One ray through each pixel's centre "
                                                 "(as Cycles' Gaussian of width 0.01)")])
     filter_width: FloatProperty(name="Filter Width", description="Pixel filter width in pixels",

@@ -30,13 +30,27 @@ def binding():
 # so that the first image comes at once and each pass refines it.
 PURPOSES = ("final", "preview", "viewport")
 QUICK_MAX_BOUNCES = 4
+# Cycles' default transparent_max_bounces, for a scene without Cycles' settings.
+DEFAULT_TRANSPARENT_MAX_BOUNCES = 8
 
 
-def settings_dict(render_settings, purpose="final"):
+def transparent_max_bounces(scene):
+    """The scene's Cycles setting (Render Properties > Light Paths > Transparent): passes through
+    Transparent BSDFs are not bounces in Cycles, and BxDF Lab reads the same number so that a
+    scene renders alike in both, without a second setting to keep in step."""
+    cycles = getattr(scene, "cycles", None)
+    return int(getattr(cycles, "transparent_max_bounces", DEFAULT_TRANSPARENT_MAX_BOUNCES))
+
+
+def settings_dict(render_settings, purpose="final",
+                  transparent_bounces=DEFAULT_TRANSPARENT_MAX_BOUNCES):
+    """bxdf.render's settings from the add-on's render settings; `transparent_bounces` is
+    transparent_max_bounces(scene)."""
     if purpose not in PURPOSES:
         raise ValueError(f"render purpose '{purpose}' is unknown; expected one of {PURPOSES}")
     s = render_settings
     settings = {"samples": s.samples, "max_bounces": s.max_bounces,
+                "transparent_max_bounces": transparent_bounces,
                 "pixel_filter": s.pixel_filter.lower(), "filter_width": s.filter_width,
                 "threads": s.threads, "seed": s.seed}
     if purpose != "final":

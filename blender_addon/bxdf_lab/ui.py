@@ -221,6 +221,8 @@ class BXDFLAB_PT_render(bpy.types.Panel):
             if name == "filter_width" and settings.pixel_filter == "PIXEL_CENTER":
                 continue
             layout.prop(settings, name)
+        if hasattr(context.scene, "cycles"):  # the one setting both renderers read
+            layout.prop(context.scene.cycles, "transparent_max_bounces")
         row = layout.row(align=True)
         row.operator("bxdf_lab.compare_renders", icon="IMAGE_REFERENCE")
         row.operator("bxdf_lab.open_compare_report", text="", icon="URL")

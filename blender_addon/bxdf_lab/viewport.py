@@ -223,7 +223,8 @@ class ViewportSession:
         pixel_size = int(settings.viewport_pixel_size)
         width, height = max(1, region.width // pixel_size), max(1, region.height // pixel_size)
         region_data = context.region_data
-        render_settings = renderer.settings_dict(settings, "viewport")
+        render_settings = renderer.settings_dict(settings, "viewport",
+                                                 renderer.transparent_max_bounces(scene))
         key = (self.scene_version, width, height, tuple(map(tuple, region_data.view_matrix)),
                tuple(map(tuple, region_data.window_matrix)), tuple(sorted(render_settings.items())))
         if key != self.job_key:

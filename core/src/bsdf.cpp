@@ -138,6 +138,7 @@ BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
 
   out.wi = frame.to_world(s.wi);
   out.flags = s.flags != 0 ? s.flags : b.flags();
+  out.component = picked;
 
   if (b.is_delta() || (s.flags & kSpecular)) {
     // A delta lobe (a delta model, or the delta part of a mixed one such as a Principled BSDF

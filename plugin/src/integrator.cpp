@@ -4,6 +4,8 @@
 #include <limits>
 #include <string>
 
+#include "bxdf/microfacet/multiscatter_ggx.h"
+#include "bxdf/models/cycles_transparent.h"
 #include "bxdf/params.h"
 #include "bxdf/render/valid_reflection.h"
 #include "bxdf/sampling.h"
@@ -44,18 +46,23 @@ Vec3 viewer_side_normal(const SurfacePoint& sp, const Vec3& wo) {
 }  // namespace
 
 PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
-    : scene_(scene), settings_(settings), transparent_shadows_(scene) {
+    : scene_(scene),
+      settings_(settings),
+      transparent_shadows_(scene, std::max(settings.transparent_max_bounces, 0)) {
   if (!scene.committed()) throw ParameterError("PathTracer: the scene is not committed");
   if (settings.max_bounces < 0)
     throw ParameterError("max_bounces " + std::to_string(settings.max_bounces) +
                          " must be in [0, inf)");
   if (settings.russian_roulette_depth < 0)
     throw ParameterError("russian_roulette_depth must be in [0, inf)");
+  if (settings.transparent_max_bounces < 0)
+    throw ParameterError("transparent_max_bounces " +
+                         std::to_string(settings.transparent_max_bounces) + " must be in [0, inf)");
 }
 
 RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf,
                                  const Vec3& wo, const std::array<float, 3>& u,
-                                 PathStats& stats) const {
+                                 int transparent_bounces, PathStats& stats) const {
   const LightSampler& sampler = scene_.light_sampler();
   if (sampler.empty()) return RGB(0.0f);
   const auto& lights = scene_.lights();
@@ -101,7 +108,7 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
       tmax = std::max(0.0f, dist * (1.0f - 1e-4f) - 2.0f * offset_scale(sp.p));
     }
     ++stats.shadow_rays;
-    const RGB visible = transparent_shadows_.throughput(origin, dir, tmax);
+    const RGB visible = transparent_shadows_.throughput(origin, dir, tmax, transparent_bounces);
     if (visible.is_black()) return RGB(0.0f);
     f *= visible;
   }
@@ -122,6 +129,7 @@ RGB PathTracer::lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bo
     if (camera_ray ? !light.visibility.camera : !light.visibility.use_mis) continue;
     LightHit h;
     if (!intersect_light(light, ray.origin, ray.dir, tmax, &h)) continue;
+    if (!(h.t > ray.tmin)) continue;  // before a transparent surface: seen by the last segment
     if (count_fully) {
       L += h.radiance;
     } else {
@@ -173,8 +181,18 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
   const auto& lights = scene_.lights();
   // Per thread, made once: graph registers and per-hit closures (reset at every hit).
   thread_local ShadingScratch scratch;
+  // Multiscatter GGX evaluates a 16-walk estimate seeded by the directions; salted per sample,
+  // its error averages away over a pixel's samples instead of staying fixed where they share
+  // the directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does.
+  const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
+  // Cycles counts a pass through a Transparent BSDF apart from the bounces (path_state_next:
+  // LABEL_TRANSPARENT): it uses no bounce, keeps the path's flags (a camera ray stays one), its
+  // MIS pdf and its ray origin (only tmin moves on), and the path ends at the surface after
+  // transparent_max_bounces + 1 passes, counting only that surface's emission.
+  int bounce = 0;               // scattering events so far (Cycles' `bounce`)
+  int transparent_bounces = 0;  // passes through transparent surfaces so far
 
-  for (int bounce = 0;; ++bounce) {
+  for (int vertex = 0;; ++vertex) {  // every surface hit; the sampler's dimensions follow it
     Hit hit;
     ++stats.rays;
     const bool camera_ray = bounce == 0;
@@ -187,9 +205,11 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
       // could not have found them (camera rays, delta bounces), else weighted against it.
       if (!(camera_ray && settings_.transparent_background))
         L += beta * escaped(ray.dir, camera_ray, count_fully, prev_pdf);
+      else if (vertex > 0)  // the film shows what passed the transparent surfaces (Cycles)
+        result.alpha -= std::min(beta.average(), 1.0f);
       break;
     }
-    if (bounce == 0) result.alpha = 1.0f;
+    if (vertex == 0) result.alpha = 1.0f;
 
     SurfacePoint sp = scene_.surface_point(hit);
     const Vec3 wo = -ray.dir;
@@ -211,11 +231,16 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
     const Vec3 closure_n = viewer_side_normal(sp, wo) * viewer_side;
     BSDF bsdf(Frame::from_normal_tangent(closure_n, sp.tangent), transmissive ? sp.ng : closure_n);
     RGB emitted = mat.emission;
+    // Past the transparent budget only this surface's emission counts (Cycles' PATH_RAY_
+    // TERMINATE_ON_NEXT_SURFACE); past max_bounces only its Transparent closures remain, which
+    // the path passes through with their summed weight (PATH_RAY_TERMINATE_AFTER_TRANSPARENT).
+    const bool ends_here = transparent_bounces > settings_.transparent_max_bounces;
+    const bool scatters = !ends_here && bounce <= settings_.max_bounces;
+    const bool may_pass = !ends_here && transparent_shadows_.transparent(sp.material);
     if (mat.graph) {
       // A node material: run its program at this point, then build its closures in place
-      // (not at a path's last hit, where only emission counts).
-      const bool scatters = bounce <= settings_.max_bounces;
-      if (scatters || !mat.graph->emission_is_constant()) {
+      // (not where only emission counts).
+      if (scatters || may_pass || !mat.graph->emission_is_constant()) {
         const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped};
         mat.graph->evaluate(ctx, scratch.registers);
       }
@@ -223,11 +248,11 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
         // Cycles' holdout: on camera rays the pixel turns transparent by the holdout weight
         // (with a transparent film), and a full holdout ends the path before its emission.
         const RGB h = mat.graph->holdout(scratch.registers);
-        if (settings_.transparent_background) result.alpha -= std::min(h.average(), 1.0f);
+        if (settings_.transparent_background) result.alpha -= std::min((h * beta).average(), 1.0f);
         if (h.r >= 1.0f && h.g >= 1.0f && h.b >= 1.0f) break;
       }
       if (!mat.graph->emission_is_constant()) emitted = mat.graph->emitted(scratch.registers);
-      if (scatters) {
+      if (scatters || may_pass) {
         scratch.arena.reset();
         mat.graph->add_closures(scratch.registers, sp.tangent, scratch.arena, bsdf);
       }
@@ -248,13 +273,32 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
         L += beta * emitted * power_heuristic(1.0f, prev_pdf, 1.0f, lp);
       }
     }
-    if (bounce > settings_.max_bounces || bsdf.num_components() == 0) break;
+    if (!scatters) {
+      if (!may_pass) break;
+      const RGB passed = TransparentShadows::transparent_weight(bsdf);
+      if (passed.is_black()) break;
+      beta *= passed;
+      ++transparent_bounces;
+      ray.tmin = TransparentShadows::past_hit(ray, hit.t);
+      continue;
+    }
+    if (bsdf.num_components() == 0) break;
 
-    if (bsdf.has_non_delta()) L += beta * sample_one_light(hit, sp, bsdf, wo, sampler.light(bounce), stats);
+    if (bsdf.has_non_delta())
+      L += beta * sample_one_light(hit, sp, bsdf, wo, sampler.light(vertex), transparent_bounces,
+                                   stats);
 
-    const BSDFSample bs = bsdf.sample_f(wo, sampler.bsdf(bounce));
+    const BSDFSample bs = bsdf.sample_f(wo, sampler.bsdf(vertex));
     if (!bs.valid() || bs.f.is_black()) break;
     beta *= bs.f_cos / bs.pdf;
+    if (bs.component >= 0 && dynamic_cast<const CyclesTransparent*>(bsdf.component(bs.component))) {
+      // A pass through: the same ray goes on behind the surface (Cycles moves only tmin).
+      if (beta.is_black()) break;
+      ++transparent_bounces;
+      ray.tmin = TransparentShadows::past_hit(ray, hit.t);
+      continue;
+    }
+    ++bounce;
     // Cycles' bsdf_sample rescales every sample of a reflecting lobe, none of a transmitting one.
     if (!(bs.flags & kTransmission))
       beta *= shading_offset_factor(dot(bs.wi, viewer_side_normal(sp, wo)),
@@ -273,7 +317,9 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
     ray.tmin = 0.0f;
     ray.tmax = kInfinity;
 
-    if (bounce >= settings_.russian_roulette_depth) {
+    // Russian roulette after scattering events only: transparent passes are bounded by their
+    // own budget (unbiased either way; Cycles also rolls there).
+    if (bounce - 1 >= settings_.russian_roulette_depth) {
       // Judged on the throughput without refraction's radiance scaling, as pbrt does, so that a
       // path inside glass is not ended more often only because its radiance is scaled down.
       // Continued with Cycles' probability √(max throughput), capped at 1: a path that still
@@ -281,7 +327,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
       const float m = beta.max_component() * eta_scale;
       const float p = std::min(std::sqrt(m), 1.0f);
       if (p < 1.0f) {
-        if (!(sampler.russian_roulette(bounce) < p)) break;
+        if (!(sampler.russian_roulette(vertex) < p)) break;
         beta *= 1.0f / p;
       }
     }

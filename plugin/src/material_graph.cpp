@@ -52,10 +52,8 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
     points[2] = ctx.p + dpdy;
   }
   if (default_tangent_reg >= 0) {
-    // Cycles' Tangent node default (svm_node_tangent, radial about Z): from generated
-    // coordinates, moved to world space as a normal is, then made perpendicular to N.
-    const Vec3 g = scene.generated(*ctx.hit, ctx.p);
-    Vec3 t = scene.normal_to_world(*ctx.hit, Vec3(-(g.y - 0.5f), g.x - 0.5f, 0.0f));
+    // Cycles' Tangent node default, made perpendicular to N as the node does.
+    Vec3 t = scene.radial_tangent(*ctx.hit, ctx.p);
     if (normalize_direction(t)) {
       Vec3 side = cross(t, ctx.n);
       t = normalize_direction(side) ? cross(ctx.n, side) : Vec3(0.0f, 0.0f, 0.0f);

@@ -27,6 +27,8 @@ void check_settings(const RenderSettings& s) {
   if (s.max_bounces < 0) bad("max_bounces", s.max_bounces, "[0, inf)");
   if (s.russian_roulette_depth < 0)
     bad("russian_roulette_depth", s.russian_roulette_depth, "[0, inf)");
+  if (s.transparent_max_bounces < 0)
+    bad("transparent_max_bounces", s.transparent_max_bounces, "[0, inf)");
   if (s.threads < 0) bad("threads", s.threads, "[0, inf) (0 = all cores)");
   if (s.tile_size < 1 || s.tile_size > 4096) bad("tile_size", s.tile_size, "[1, 4096]");
   if (s.samples_per_pass < 0) bad("samples_per_pass", s.samples_per_pass, "[0, inf)");
@@ -53,6 +55,7 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   IntegratorSettings integrator_settings;
   integrator_settings.max_bounces = settings.max_bounces;
   integrator_settings.russian_roulette_depth = settings.russian_roulette_depth;
+  integrator_settings.transparent_max_bounces = settings.transparent_max_bounces;
   integrator_settings.transparent_background = settings.transparent_background;
   const PathTracer tracer(scene, integrator_settings);
   Film film(settings.width, settings.height);

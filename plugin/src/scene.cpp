@@ -573,10 +573,7 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
     sp.uv = Point2(hit.b1, hit.b2);
   }
   if (!have_tangent) {
-    // Cycles' default tangent (a radial Tangent node about the object's Z axis): from the
-    // generated coordinates, taken to world space as a normal is (svm_node_tangent).
-    const Vec3 g = generated(hit, sp.p);
-    sp.tangent = object_of(hit).normal_to_world(Vec3(-(g.y - 0.5f), g.x - 0.5f, 0.0f));
+    sp.tangent = radial_tangent(hit, sp.p);
   }
   sp.material = m.material_indices.empty() ? m.material : m.material_indices[hit.triangle];
   return sp;
@@ -639,6 +636,13 @@ Vec3 Scene::generated(const Hit& hit, const Vec3& p) const {
 
 Vec3 Scene::normal_to_object(const Hit& hit, const Vec3& n) const {
   return object_of(hit).normal_to_object(n);
+}
+
+Vec3 Scene::radial_tangent(const Hit& hit, const Vec3& p) const {
+  // svm_node_tangent's radial mode about Z, on generated coordinates, taken to world space as
+  // a normal is (Cycles does the same: object_normal_transform).
+  const Vec3 g = generated(hit, p);
+  return normal_to_world(hit, Vec3(-(g.y - 0.5f), g.x - 0.5f, 0.0f));
 }
 
 Vec3 Scene::normal_to_world(const Hit& hit, const Vec3& n) const {

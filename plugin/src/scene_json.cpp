@@ -143,7 +143,7 @@ void read_render_settings(const Reader& r, const json& j, RenderSettings& s) {
   const std::string path = "render";
   r.object(j, path);
   r.only_keys(j, path, {"width", "height", "spp", "max_bounces", "filter", "filter_width", "seed",
-                        "tile_size", "transparent_background"});
+                        "tile_size", "transparent_max_bounces", "transparent_background"});
   if (j.contains("width")) s.width = r.integer_in(j["width"], "render.width", 1, 65536, "[1, 65536]");
   if (j.contains("height"))
     s.height = r.integer_in(j["height"], "render.height", 1, 65536, "[1, 65536]");
@@ -156,7 +156,7 @@ void read_render_settings(const Reader& r, const json& j, RenderSettings& s) {
     try {
       s.filter = parse_filter(name);
     } catch (const ParameterError&) {
-      r.fail("render.filter", "one of \"box\", \"gaussian\", \"pixel_center\"", j["filter"]);
+      r.fail("render.filter", std::string("one of ") + kFilterNames, j["filter"]);
     }
   }
   if (j.contains("filter_width"))
@@ -164,6 +164,9 @@ void read_render_settings(const Reader& r, const json& j, RenderSettings& s) {
         r.number_in(j["filter_width"], "render.filter_width", 1e-6, 16.0, "(0, 16] pixels"));
   if (j.contains("seed"))
     s.seed = static_cast<uint64_t>(r.integer_in(j["seed"], "render.seed", 0, 2147483647, "[0, 2^31)"));
+  if (j.contains("transparent_max_bounces"))
+    s.transparent_max_bounces = r.integer_in(j["transparent_max_bounces"],
+                                             "render.transparent_max_bounces", 0, 1024, "[0, 1024]");
   if (j.contains("tile_size"))
     s.tile_size = r.integer_in(j["tile_size"], "render.tile_size", 1, 4096, "[1, 4096]");
   if (j.contains("transparent_background")) {

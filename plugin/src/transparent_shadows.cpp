@@ -65,6 +65,10 @@ RGB TransparentShadows::surface_transparency(const Hit& hit, SurfacePoint sp,
   } else {
     for (const BxDFPtr& c : mat.components) bsdf.add(c.get());
   }
+  return transparent_weight(bsdf);
+}
+
+RGB TransparentShadows::transparent_weight(const BSDF& bsdf) {
   RGB sum(0.0f);
   for (int i = 0; i < bsdf.num_components(); ++i)
     if (const CyclesTransparent* t = as_transparent(bsdf.component(i)))
@@ -72,7 +76,15 @@ RGB TransparentShadows::surface_transparency(const Hit& hit, SurfacePoint sp,
   return sum;
 }
 
-RGB TransparentShadows::throughput(const Vec3& origin, const Vec3& dir, float tmax) const {
+float TransparentShadows::past_hit(const Ray& ray, float t) {
+  const Vec3 p = ray.at(t);
+  const float scale = 1.0f + std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
+  return t + 3e-5f * scale;
+}
+
+RGB TransparentShadows::throughput(const Vec3& origin, const Vec3& dir, float tmax,
+                                   int path_transparent_bounces) const {
+  const int budget = std::max(max_hits_ - path_transparent_bounces, 0);
   if (!any_) return scene_.occluded(origin, dir, tmax) ? RGB(0.0f) : RGB(1.0f);
   RGB t(1.0f);
   Ray ray;
@@ -83,13 +95,10 @@ RGB TransparentShadows::throughput(const Vec3& origin, const Vec3& dir, float tm
     Hit hit;
     if (!scene_.intersect(ray, &hit)) return t;
     const SurfacePoint sp = scene_.surface_point(hit);
-    if (!transparent(sp.material) || hits >= max_hits_) return RGB(0.0f);
+    if (!transparent(sp.material) || hits >= budget) return RGB(0.0f);
     t *= surface_transparency(hit, sp, dir);
     if (t.is_black()) return RGB(0.0f);
-    // On past the surface, along the same ray: a relative step well above the hit's rounding.
-    const Vec3 p = ray.at(hit.t);
-    const float scale = 1.0f + std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
-    ray.tmin = hit.t + 3e-5f * scale;
+    ray.tmin = past_hit(ray, hit.t);  // on past the surface, along the same ray
     if (!(ray.tmin < ray.tmax)) return t;
   }
 }

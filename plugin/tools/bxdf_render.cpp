@@ -1,7 +1,7 @@
 // bxdf-render: renders a JSON scene file to an image.
 //
 //   bxdf-render scene.json -o out.exr [--spp N] [--threads T] [--max-bounces B]
-//               [--filter box|gaussian|pixel_center] [--filter-width W] [--seed S]
+//               [--filter box|gaussian|blackman_harris|pixel_center] [--filter-width W] [--seed S]
 //               [--width W] [--height H] [--quiet]
 //
 // Command-line values override the file's "render" settings. Ctrl-C (SIGINT) or SIGTERM stops
@@ -26,7 +26,7 @@ extern "C" void on_signal(int) { g_cancel.store(true); }
 
 const char* kUsage =
     "usage: bxdf-render scene.json -o out.exr [--spp N] [--threads T] [--max-bounces B]\n"
-    "                   [--filter box|gaussian|pixel_center] [--filter-width W] [--seed S]\n"
+    "                   [--filter box|gaussian|blackman_harris|pixel_center] [--filter-width W] [--seed S]\n"
     "                   [--width W] [--height H] [--quiet]\n";
 
 struct Options {

@@ -55,6 +55,6 @@ def test_a_render_needs_the_renderer_and_never_fakes_one(small_scene, material, 
 def test_render_settings_live_on_the_scene(small_scene):
     settings = small_scene.bxdf_lab_render
     assert (settings.samples, settings.max_bounces, settings.pixel_filter, settings.threads,
-            settings.seed) == (64, 8, "GAUSSIAN", 0, 0)
+            settings.seed) == (64, 8, "BLACKMAN_HARRIS", 0, 0)
     with pytest.raises(TypeError):
         settings.pixel_filter = "NO_SUCH_FILTER"

@@ -200,6 +200,50 @@ TEST(MultiscatterGGX, FAgreesWithLongWalkAverage) {
   }
 }
 
+// The renderer's per-sample salt (MultiscatterWalkSalt): a salt gives other walks, the same salt
+// the same bits, closing the scope restores the unsalted f, and the mean of f over K salts
+// approaches the walk's expectation as 1/√K (what a pixel whose samples share the directions
+// converges to). Reflection at α 0.7, the worst case of FAgreesWithLongWalkAverage.
+TEST(MultiscatterGGX, SaltedWalksAverageToTheExpectation) {
+  const MultiscatterGGXReflection refl(reflection_setup(0.7f, 0.7f, MultiscatterFresnel::kColor));
+  PCG32 rng(23);
+  constexpr int kPairs = 20, kSalts = 64, kLong = 20000;
+  double err2_one = 0.0, err2_mean = 0.0, ref2 = 0.0;
+  int changed = 0;
+  for (int i = 0; i < kPairs; ++i) {
+    const Vec3 wo = sample_cosine_hemisphere(Point2(rng.uniform(), rng.uniform()));
+    const Vec3 wi = sample_cosine_hemisphere(Point2(rng.uniform(), rng.uniform()));
+    const RGB unsalted = refl.eval(wo, wi);
+    double sum = 0.0;
+    for (int k = 1; k <= kSalts; ++k) {
+      RGB salted;
+      {
+        const MultiscatterWalkSalt salt(static_cast<uint64_t>(k) * 0x9e3779b97f4a7c15ULL);
+        EXPECT_EQ(MultiscatterWalkSalt::current(), static_cast<uint64_t>(k) * 0x9e3779b97f4a7c15ULL);
+        salted = refl.eval(wo, wi);
+        EXPECT_EQ(salted.r, refl.eval(wo, wi).r);  // the same salt, the same bits
+      }
+      EXPECT_EQ(MultiscatterWalkSalt::current(), 0u);
+      EXPECT_EQ(refl.eval(wo, wi).r, unsalted.r);  // scope closed: the unsalted f again
+      changed += salted.r != unsalted.r;
+      sum += salted.r;
+    }
+    double long_sum = 0.0;
+    PCG32 walk_rng(5000 + i);
+    for (int k = 0; k < kLong; ++k) long_sum += refl.walk_f(wo, wi, walk_rng).r;
+    const double expectation = long_sum / kLong;
+    err2_one += (unsalted.r - expectation) * (unsalted.r - expectation);
+    err2_mean += (sum / kSalts - expectation) * (sum / kSalts - expectation);
+    ref2 += expectation * expectation;
+  }
+  const double one = std::sqrt(err2_one / ref2), mean = std::sqrt(err2_mean / ref2);
+  std::printf("multiscatter reflection a=0.7: relative RMS vs 20000 walks: f %.4f, mean of f "
+              "over %d salts %.4f\n", one, kSalts, mean);
+  EXPECT_GT(changed, kPairs * kSalts * 9 / 10);
+  // 1/√64 of the single f's error, with room for the long average's own error (≈ 0.235/√1250).
+  EXPECT_LT(mean, one / 4.0);
+}
+
 // With a black colour the walk adds nothing after the first bounce, so f is Cycles' analytic
 // first order: D · G2 / (4 cos θo cos θi) with the height-correlated G2 = 1/(1 + Λo + Λi).
 TEST(MultiscatterGGX, FirstOrderIsHeightCorrelatedGGX) {

@@ -157,7 +157,7 @@ TEST_F(CLI, EachKindOfBadSceneFailsWithItsMessage) {
       {"index_out_of_range", replace("[[0, 1, 2]]", "[[0, 1, 5]]"),
        {"meshes[2].indices[0][2]", "[0, 2]"}},
       {"missing_obj", replace("floor.obj", "nowhere.obj"), {"meshes[1].obj", "does not exist"}},
-      {"bad_filter", replace("\"gaussian\"", "\"blur\""), {"render.filter", "\"box\""}},
+      {"bad_filter", replace("\"gaussian\"", "\"blur\""), {"render.filter", "'blackman_harris'"}},
       {"bad_spp", replace("\"spp\": 4", "\"spp\": 0"), {"render.spp", "[1,"}},
       {"bad_fit", replace("\"lens\": 40", "\"lens\": 40, \"sensor_fit\": \"WIDE\""),
        {"camera.sensor_fit", "AUTO"}},

@@ -138,6 +138,10 @@ TEST(Renderer, RefusesBadSettingsByName) {
   s.max_bounces = -1;
   EXPECT_NE(message(s).find("max_bounces"), std::string::npos);
   s = small_settings();
+  s.transparent_max_bounces = -1;
+  EXPECT_NE(message(s).find("transparent_max_bounces' is -1; valid range [0, inf)"),
+            std::string::npos);
+  s = small_settings();
   s.filter_width = 0.0f;
   EXPECT_NE(message(s).find("filter width"), std::string::npos);
   Scene uncommitted;
@@ -194,6 +198,46 @@ TEST(PixelFilter, DistributionsMatchTheirDefinitions) {
   EXPECT_LE(bmax, 0.5);
   EXPECT_THROW(PixelFilter(FilterType::Box, -1.0f), ParameterError);
   EXPECT_THROW(parse_filter("mitchell"), ParameterError);
+}
+
+// Cycles' default filter (scene/film.cpp): the four-term Blackman-Harris window, with the width
+// doubled, so width 1.5 spans ±1.5 px. The sampled offsets' CDF at bin edges against the
+// window's integral, written out here independently of filter.cpp. Like Cycles' own 1024-entry
+// table, ours interpolates the inverse CDF linearly, which moves probability by less than one
+// table step (1/1023) within a step; hence that slack beside 5 standard deviations.
+TEST(PixelFilter, BlackmanHarrisMatchesCyclesWindow) {
+  EXPECT_EQ(parse_filter("blackman_harris"), FilterType::BlackmanHarris);
+  const float width = 1.5f;
+  const PixelFilter bh(FilterType::BlackmanHarris, width);
+  const int bins = 30, n = 400000;
+  std::vector<double> count(bins, 0.0);
+  PCG32 rng(11);
+  for (int i = 0; i < n; ++i) {
+    const Point2 s = bh.sample(Point2(rng.uniform(), rng.uniform()));
+    ASSERT_LE(std::fabs(s.x), width);
+    ASSERT_LE(std::fabs(s.y), width);
+    count[size_t(std::min(bins - 1, int((s.x + width) / (2 * width) * bins)))] += 1.0;
+  }
+  auto window = [&](double x) {
+    const double v = 2 * M_PI * (x / (2.0 * width) + 0.5);
+    return 0.35875 - 0.48829 * std::cos(v) + 0.14128 * std::cos(2 * v) - 0.01168 * std::cos(3 * v);
+  };
+  std::vector<double> expected(bins, 0.0);
+  double total = 0;
+  for (int b = 0; b < bins; ++b) {
+    for (int k = 0; k < 200; ++k)
+      expected[size_t(b)] += window(-width + (b + (k + 0.5) / 200) * (2.0 * width / bins));
+    total += expected[size_t(b)];
+  }
+  double cdf = 0, empirical = 0, centre_mass = 0;
+  for (int b = 0; b < bins; ++b) {
+    cdf += expected[size_t(b)] / total;
+    empirical += count[size_t(b)] / n;
+    if (b >= bins / 3 && b < 2 * bins / 3) centre_mass += count[size_t(b)] / n;
+    EXPECT_NEAR(empirical, cdf, 5 * std::sqrt(cdf * (1 - cdf) / n) + 1.0 / 1023) << "edge " << b;
+  }
+  // The window's middle third (±0.5 px) holds 76.3% of it; a Gaussian of σ = w/4 would hold 82%.
+  EXPECT_NEAR(centre_mass, 0.763, 0.005);
 }
 
 // An emissive enclosure of radiance 1 around a grey Lambertian sphere: the sphere reflects

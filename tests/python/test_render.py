@@ -531,7 +531,8 @@ BAD_SETTINGS = [
     ({"samples": 0}, r"settings\['samples'\]: 0 is out of range; expected an integer in \[1, "),
     ({"samples": 2.5}, r"settings\['samples'\]: 2.5 is not an integer"),
     ({"max_bounces": -1}, r"settings\['max_bounces'\]"),
-    ({"pixel_filter": "mitchell"}, r"settings\['pixel_filter'\]: 'mitchell' is unknown; expected 'box', 'gaussian' or 'pixel_center'"),
+    ({"transparent_max_bounces": 1025}, r"settings\['transparent_max_bounces'\]: 1025 is out of range; expected an integer in \[0, 1024\]"),
+    ({"pixel_filter": "mitchell"}, r"settings\['pixel_filter'\]: 'mitchell' is unknown; expected 'box', 'gaussian', 'blackman_harris' or 'pixel_center'"),
     ({"filter_width": 0.0}, r"settings\['filter_width'\]: 0.0 is out of range; expected a number in \(0, 16\]"),
     ({"filter_width": float("nan")}, r"settings\['filter_width'\]"),
     ({"threads": -2}, r"settings\['threads'\]"),
@@ -548,7 +549,8 @@ def test_bad_settings_name_the_field(settings, message):
 
 
 def test_filter_spellings_of_the_addon_accepted():
-    for name in ("BOX", "GAUSSIAN", "PIXEL_CENTER", "box", "gaussian", "pixel_center"):
+    for name in ("BOX", "GAUSSIAN", "BLACKMAN_HARRIS", "PIXEL_CENTER", "box", "gaussian",
+                 "blackman_harris", "pixel_center"):
         image = bxdf.render(good_scene(), {"samples": 1, "max_bounces": 0, "pixel_filter": name})
         assert image.shape == (SIZE, SIZE, 4)
 

@@ -23,6 +23,7 @@ struct BSDFSample {
   Vec3 wi;
   float pdf = 0.0f;
   uint32_t flags = 0;  // the sampled lobe's flags (kSpecular set for a delta lobe)
+  int component = -1;  // index of the sampled component (the integrator tells transparency by it)
   bool valid() const { return pdf > 0.0f; }
   bool is_delta() const { return (flags & kSpecular) != 0; }
 };

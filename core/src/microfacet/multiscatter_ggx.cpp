@@ -361,10 +361,14 @@ uint64_t hash_pair(const Vec3& a, const Vec3& b) {
   return h;
 }
 
-// The average of kMultiscatterWalks walks of the pair (start, end), seeded from the pair.
+thread_local uint64_t walk_salt = 0;
+
+// The average of kMultiscatterWalks walks of the pair (start, end), seeded from the pair (and
+// the thread's salt, when a MultiscatterWalkSalt scope is open).
 template <bool kGlass>
 RGB averaged_walks(const Walk& p, const Vec3& start, const Vec3& end, bool end_outside) {
-  const uint64_t seed = hash_pair(start, end);
+  const uint64_t pair = hash_pair(start, end);
+  const uint64_t seed = walk_salt == 0 ? pair : mix64(pair ^ mix64(walk_salt));
   RGB sum(0.0f);
   for (int k = 0; k < kMultiscatterWalks; ++k) {
     PCG32 rng(static_cast<uint64_t>(k), seed);
@@ -409,6 +413,12 @@ MultiscatterSetup clamped(const MultiscatterSetup& s, bool glass) {
 }
 
 }  // namespace
+
+MultiscatterWalkSalt::MultiscatterWalkSalt(uint64_t salt) : previous_(walk_salt) {
+  walk_salt = salt;
+}
+MultiscatterWalkSalt::~MultiscatterWalkSalt() { walk_salt = previous_; }
+uint64_t MultiscatterWalkSalt::current() { return walk_salt; }
 
 // ---- Reflection ----
 

@@ -83,6 +83,15 @@ void set_cycles_dielectric_place(ModelInfo& m, CyclesDielectricNode node) {
                            sizeof(CyclesRoughDielectric<microfacet::GGX>)});
 }
 
+std::vector<ParamSpec> cycles_dielectric_surface_params() {
+  return {
+      float_param("roughness", 0.0, 0.0, 1.0, "",
+                  "Cycles roughness; alpha = roughness^2 (sharp at roughness <= 1e-4)"),
+      float_param("ior", 1.45, 0.0, 1000.0, "",
+                  "Index of refraction below the surface over above (Cycles uses max(ior, 1e-5))"),
+  };
+}
+
 ModelInfo cycles_glass_model() {
   ModelInfo m;
   m.name = "cycles_glass";
@@ -91,11 +100,8 @@ ModelInfo cycles_glass_model() {
       rgb_param("color", {1.0, 1.0, 1.0}, 0.0, 1.0, "Colour: a factor on both lobes"),
       enum_param("distribution", "beckmann", {"sharp", "beckmann", "ggx", "multi_ggx"},
                  "Cycles' distribution: sharp (delta), Beckmann, GGX or multiscatter GGX"),
-      float_param("roughness", 0.0, 0.0, 1.0, "",
-                  "Cycles roughness; alpha = roughness^2 (sharp at roughness <= 1e-4)"),
-      float_param("ior", 1.45, 0.0, 1000.0, "",
-                  "Index of refraction below the surface over above (Cycles uses max(ior, 1e-5))"),
   };
+  for (ParamSpec& spec : cycles_dielectric_surface_params()) m.params.push_back(std::move(spec));
   m.create = [](const ParamSet& p) {
     return make_cycles_dielectric(CyclesDielectricNode::kGlass, p);
   };

@@ -18,11 +18,8 @@ ModelInfo cycles_refraction_model() {
       enum_param("distribution", "beckmann", {"sharp", "beckmann", "ggx", "multi_ggx"},
                  "Cycles' distribution: sharp (delta), Beckmann, GGX, or multiscatter GGX "
                  "(the glass walk's transmitted part, Fresnel included; no Cycles node)"),
-      float_param("roughness", 0.0, 0.0, 1.0, "",
-                  "Cycles roughness; alpha = roughness^2 (sharp at roughness <= 1e-4)"),
-      float_param("ior", 1.45, 0.0, 1000.0, "",
-                  "Index of refraction below the surface over above (Cycles uses max(ior, 1e-5))"),
   };
+  for (ParamSpec& spec : cycles_dielectric_surface_params()) m.params.push_back(std::move(spec));
   m.create = [](const ParamSet& p) {
     return make_cycles_dielectric(CyclesDielectricNode::kRefraction, p);
   };

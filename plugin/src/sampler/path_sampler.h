@@ -35,6 +35,9 @@ class PathSampler {
   float russian_roulette(int bounce) const {
     return sobol::sample<1>(index_, set(kRussianRoulette, bounce))[0];
   }
+  // A number of its own for each (pixel, sample): the multiscatter walks' salt (nonzero, but
+  // for one pair in 2^64).
+  uint64_t walk_salt() const { return ((static_cast<uint64_t>(seed_) << 32) | index_) + 1u; }
 
  private:
   enum Purpose : uint32_t { kFilter, kLight, kBsdf, kRussianRoulette, kPurposes };

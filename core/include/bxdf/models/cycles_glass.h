@@ -170,6 +170,10 @@ struct CyclesDielectricInputs {
 CyclesDielectricInputs cycles_dielectric_inputs(const std::string& distribution, float roughness,
                                                 float ior);
 
+// The Glass and Refraction nodes' shared inputs after `color` and `distribution`: `roughness`
+// and `ior`, declared once for both.
+std::vector<ParamSpec> cycles_dielectric_surface_params();
+
 // Builds the Glass or Refraction node's model from validated registry parameters (`color`,
 // `distribution`, `roughness`, `ior`).
 std::unique_ptr<BxDF> make_cycles_dielectric(CyclesDielectricNode node, const ParamSet& validated);

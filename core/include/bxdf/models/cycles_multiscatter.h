@@ -1,6 +1,10 @@
 // Cycles 3.4's multiscatter GGX closures as the Glossy and Glass nodes build them
 // (MULTI_GGX and MULTI_GGX_GLASS: one closure, weight = colour, the walk's later bounces
 // tinted by the same colour): a lobe of microfacet/multiscatter_ggx.h times the colour.
+// f is a 16-walk estimate of Cycles' walk, deterministic in (wo, wi): relative RMS error 0.235
+// (reflection, α 0.7) and 0.118 (glass, α 0.6) against the walk's expectation; the renderer
+// salts the walks per sample so that its images converge to that expectation
+// (multiscatter_ggx.h, Determinism).
 #pragma once
 
 #include "bxdf/bxdf.h"

@@ -13,10 +13,14 @@ namespace bxdf::render {
 enum class FilterType {
   Box,          // uniform over a square of side `width` pixels
   Gaussian,     // Cycles' Gaussian: σ = width/4 per axis, truncated at ±1.5·width
+  BlackmanHarris,  // Cycles' default: the Blackman–Harris window over ±width per axis
   PixelCenter,  // every sample through the pixel centre
 };
 
-// "box", "gaussian", "pixel_center" (also "center"); throws ParameterError otherwise.
+// The names parse_filter takes, for messages.
+constexpr const char* kFilterNames = "'box', 'gaussian', 'blackman_harris' or 'pixel_center'";
+// "box", "gaussian", "blackman_harris", "pixel_center" (also "pixel_centre", "center"); throws
+// ParameterError otherwise.
 FilterType parse_filter(const std::string& name);
 const char* to_string(FilterType type);
 
@@ -33,6 +37,7 @@ class PixelFilter {
       case FilterType::Box:
         return {(u.x - 0.5f) * width_, (u.y - 0.5f) * width_};
       case FilterType::Gaussian:
+      case FilterType::BlackmanHarris:
         return {sample_table(u.x), sample_table(u.y)};
     }
     return {0.0f, 0.0f};

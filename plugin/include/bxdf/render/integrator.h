@@ -24,6 +24,10 @@ struct IntegratorSettings {
   // 0 = direct light only (emitters seen from the first hit); n = up to n indirect bounces.
   int max_bounces = 8;
   int russian_roulette_depth = 3;  // first bounce at which a path may be ended at random
+  // Passes through Transparent BSDFs a path may make (Cycles' transparent_max_bounces; they are
+  // not bounces): the surface after one more pass adds only its emission. Also the shadow
+  // rays' budget, less the path's passes so far.
+  int transparent_max_bounces = TransparentShadows::kDefaultMaxBounces;
   bool transparent_background = false;  // camera rays that escape get no world radiance
 };
 
@@ -51,7 +55,8 @@ class PathTracer {
 
  private:
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
-                       const std::array<float, 3>& u, PathStats& stats) const;
+                       const std::array<float, 3>& u, int transparent_bounces,
+                       PathStats& stats) const;
   // Radiance a ray collects from the lights it passes through before `tmax`; MIS-weighted
   // against light sampling unless `count_fully` (camera rays, delta bounces).
   RGB lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bool count_fully,

@@ -20,6 +20,7 @@ struct RenderSettings {
   int samples_per_pixel = 16;
   int max_bounces = 8;
   int russian_roulette_depth = 3;  // first bounce at which paths may be ended at random
+  int transparent_max_bounces = 8;  // Cycles' transparent_max_bounces (integrator.h)
   FilterType filter = FilterType::Box;
   float filter_width = 1.0f;  // pixels (Blender's filter_width for Gaussian)
   uint64_t seed = 0;

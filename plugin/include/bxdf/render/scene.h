@@ -37,7 +37,7 @@ struct SurfacePoint {
   Vec3 p;          // on the triangle (from barycentrics, not from the ray: more accurate)
   Vec3 ng;         // geometric normal, on the side of ns
   Vec3 ns;         // interpolated shading normal
-  Vec3 tangent;    // dp/du where UVs exist, else radial about the world Z axis
+  Vec3 tangent;    // dp/du where UVs exist, else radial_tangent (Cycles' default)
   Point2 uv;
   uint32_t material = 0;
 };
@@ -113,6 +113,8 @@ class Scene {
   Vec3 normal_to_world(const Hit& hit, const Vec3& n) const;
   Vec3 object_position(const Hit& hit, const Vec3& p) const;
   Vec3 generated(const Hit& hit, const Vec3& p) const;  // object position in the texture space
+  // Cycles' default tangent: radial about the object's Z axis, in world space, not normalised.
+  Vec3 radial_tangent(const Hit& hit, const Vec3& p) const;
   // The hit moved by `dp` (world space, along the triangle's plane): its barycentrics follow,
   // so attributes read there are the triangle's own, extrapolated linearly past its edges.
   Hit offset_hit(const Hit& hit, const Vec3& dp) const;

@@ -4,9 +4,9 @@
 // colour times the mix weight: Cycles' closure_transparent_extinction). Any other surface
 // blocks it, and so does a transparent hit past the budget: Cycles 3.4 lets a shadow ray
 // through transparent_max_bounces transparent surfaces and no more (measured with the default
-// 8: 8 stacked veils pass, 9 block; tests/blender/test_transparent_shadows.py). A path's own
-// transparent bounces lower that budget in Cycles; this renderer counts them as ordinary
-// bounces, so its shadow rays always get the whole budget.
+// 8: 8 stacked veils pass, 9 block; tests/blender/test_transparent_shadows.py). The path's own
+// transparent bounces so far lower that budget, as in Cycles (integrate_shadow_max_transparent_
+// hits: transparent_max_bounces − the path's transparent bounces).
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,17 @@ class TransparentShadows {
 
   // The light a shadow ray from `origin` along the unit `dir` carries to tmax: 1 when nothing is
   // in the way, the product of the transparent surfaces' weights when only they are, else 0.
-  RGB throughput(const Vec3& origin, const Vec3& dir, float tmax) const;
+  // `path_transparent_bounces`: the transparent surfaces the path passed before this vertex.
+  RGB throughput(const Vec3& origin, const Vec3& dir, float tmax,
+                 int path_transparent_bounces = 0) const;
+
+  // The summed weight of a BSDF's Transparent components (Cycles' closure_transparent_
+  // extinction): what passes straight through the surface.
+  static RGB transparent_weight(const BSDF& bsdf);
+
+  // The ray parameter just past a hit at t on `ray`: a relative step well above the hit's
+  // rounding, so that the next query along the same ray starts behind the surface.
+  static float past_hit(const Ray& ray, float t);
 
   // Whether material `index` has a Transparent BSDF (in its components or its graph).
   bool transparent(uint32_t index) const { return transparent_[index] != 0; }
