@@ -41,6 +41,9 @@ py::array_t<float> image_array(const float* rgba, int width, int height, bool bo
   return image;
 }
 
+// Tile progress reaches on_progress at most this often (pass images and the end at once).
+constexpr std::chrono::milliseconds kTileReportInterval(50);
+
 // What the render thread tells the waiting Python thread.
 struct Channel {
   std::mutex mutex;
@@ -108,6 +111,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
 
   std::optional<py::error_already_set> python_error;  // from on_progress or Ctrl-C
   bool stopped_by_callback = false;
+  auto last_report = std::chrono::steady_clock::now() - kTileReportInterval;  // the first tile at once
   for (;;) {
     uint64_t done = 0, total = 0;
     bool tiles_changed = false, pass_ready = false, finished = false;
@@ -115,9 +119,13 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
     {
       py::gil_scoped_release release;
       std::unique_lock<std::mutex> lock(channel.mutex);
-      // The timeout bounds how late Ctrl-C is noticed when nothing else happens.
-      channel.wake.wait_for(lock, std::chrono::milliseconds(50),
-                            [&] { return channel.finished || channel.tiles_changed || channel.pass_ready; });
+      // The timeout bounds how late Ctrl-C is noticed when nothing else happens. Finished tiles
+      // alone wake Python at most every kTileReportInterval: a call per tile (hundreds in a
+      // short render) took the GIL and a core from the render for nothing a progress bar shows.
+      channel.wake.wait_for(lock, kTileReportInterval, [&] {
+        return channel.finished || channel.pass_ready ||
+               (channel.tiles_changed && std::chrono::steady_clock::now() - last_report >= kTileReportInterval);
+      });
       done = channel.tiles_done;
       total = channel.tiles_total;
       tiles_changed = channel.tiles_changed;
@@ -144,6 +152,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
     try {
       py::object image = pass_ready ? py::object(image_array(pass_image.data(), settings.width, settings.height, bottom_up))
                                     : py::object(py::none());
+      last_report = std::chrono::steady_clock::now();
       py::object keep_going = on_progress(done, total, image);
       // Only an explicit False stops: a callback that returns nothing lets the render go on.
       if (keep_going.ptr() == Py_False) {
@@ -233,7 +242,8 @@ passes through Transparent BSDFs are not bounces, and the surface after this man
 only its emission), ``transparent_background`` (False).
 
 ``on_progress(done, total, image)`` is called on the calling thread, holding the GIL, while the
-render runs on C++ threads: ``done``/``total`` count tiles over the whole render; ``image`` is the
+render runs on C++ threads: ``done``/``total`` count tiles over the whole render (reported at most
+every 50 ms, and once more at the end with ``done == total``); ``image`` is the
 partial result (same layout as the return value) after each pass but the last, else None. Return
 False to cancel (any other return value, None included, continues). The GIL is released while
 waiting, so other Python threads run.
