@@ -65,6 +65,27 @@ bool BSDF::has_transmission() const {
   return false;
 }
 
+// f and f_cos of the whole mixture in one pass over the components (sample_f needs both):
+// each component is evaluated once, and each sum is that of f() and f_cos(), bit for bit.
+void BSDF::f_and_f_cos(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, RGB* f_sum,
+                       RGB* f_cos_sum) const {
+  const bool reflect = dot(wi_world, ng_) * dot(wo_world, ng_) > 0.0f;
+  RGB sum(0.0f), cos_sum(0.0f);
+  for (int i = 0; i < count_; ++i) {
+    const BxDF& b = *components_[i];
+    if (!b.matches(mask) || !agrees_with_geometry(b.flags(), reflect)) continue;
+    const Vec3 wo = frames_[i].to_local(wo_world);
+    if (wo.z == 0.0f) continue;
+    const Vec3 wi = frames_[i].to_local(wi_world);
+    RGB f = b.f(wo, wi);
+    if (bump_shadowed_[i]) f *= bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
+    sum += weights_[i] * f;
+    cos_sum += weights_[i] * (f * abs_cos_theta(wi));
+  }
+  *f_sum = sum;
+  *f_cos_sum = cos_sum;
+}
+
 template <class Term>
 RGB BSDF::weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask,
                        Term term) const {
@@ -165,8 +186,7 @@ BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
 
   // Non-delta: f and pdf of the whole mixture, with the geometric-normal test, as f() does.
   out.pdf = pdf(wo_world, out.wi, mask);
-  out.f = f(wo_world, out.wi, mask);
-  out.f_cos = f_cos(wo_world, out.wi, mask);
+  f_and_f_cos(wo_world, out.wi, mask, &out.f, &out.f_cos);
   if (!(out.pdf > 0.0f)) return BSDFSample{};
   return out;
 }

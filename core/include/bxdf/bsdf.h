@@ -80,6 +80,8 @@ class BSDF {
  private:
   Frame frame_;
   Vec3 ng_{0, 0, 1};
+  void f_and_f_cos(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, RGB* f_sum,
+                   RGB* f_cos_sum) const;
   template <class Term>
   RGB weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, Term term) const;
 
