@@ -9,9 +9,10 @@ sphere its own mesh; "instanced" links one mesh to every sphere object. Each Ble
 its own Blender process: the process's resident set is read before bpy.ops.render.render, the
 peak is reset (/proc/self/clear_refs) and read after it, and the difference divided by the
 triangle count is the peak memory per triangle. The CLI renders the same spheres from a scene
-file (bxdf-render has no instancing: unique only), its peak measured by /usr/bin/time against a
-one-sphere scene. Build times: BXDF_LAB's own split (export, conversion, BVH) and, for Cycles, the
-time from its "Building BVH" status line to its first "Sample" line.
+file, unique ("meshes": one sphere each) and instanced ("prototypes" + "instances": one sphere
+placed N times), its peak measured by /usr/bin/time against a one-sphere scene. Build times:
+BXDF_LAB's own split (export, conversion, BVH) and, for Cycles, the time from its "Building BVH"
+status line to its first "Sample" line.
 """
 import argparse
 import json
@@ -130,14 +131,20 @@ def blender_run(engine, kind, args, workdir):
     return result
 
 
-def cli_run(args, workdir, spheres):
+def cli_run(args, workdir, spheres, instanced=False):
     scene = {"camera": {"position": [0, -40, 30], "look_at": [0, 0, 0], "up": [0, 0, 1]},
              "render": {"width": 128, "height": 128},
              "materials": {"grey": {"model": "lambertian", "params": {"reflectance": 0.5}}},
-             "meshes": [{"shape": "sphere", "center": list(c), "radius": 1.0, "segments": args.segments,
-                         "rings": args.segments // 2, "material": "grey"} for c in sphere_centres(spheres)],
              "lights": [{"type": "sun", "direction": [-0.3, 0.5, -1], "strength": 3, "angle": 0}]}
-    path = os.path.join(workdir, f"cli_{spheres}.json")
+    sphere = {"shape": "sphere", "radius": 1.0, "segments": args.segments, "rings": args.segments // 2,
+              "material": "grey"}
+    if instanced:
+        scene["prototypes"] = {"sphere": dict(sphere, center=[0, 0, 0])}
+        scene["instances"] = [{"prototype": "sphere", "matrix": [[1, 0, 0, c[0]], [0, 1, 0, c[1]], [0, 0, 1, c[2]]]}
+                              for c in sphere_centres(spheres)]
+    else:
+        scene["meshes"] = [dict(sphere, center=list(c)) for c in sphere_centres(spheres)]
+    path = os.path.join(workdir, f"cli_{spheres}_{'instanced' if instanced else 'unique'}.json")
     with open(path, "w", encoding="utf-8") as fh:
         json.dump(scene, fh)
     binary = os.path.join(args.build, "plugin", "tools", "bxdf-render")
@@ -167,13 +174,15 @@ def main():
     if args.spheres < 1 or args.segments < 8:
         p.error(f"--spheres must be >= 1 and --segments >= 8, got {args.spheres}, {args.segments}")
     workdir = tempfile.mkdtemp(prefix="bxdf-scale-")
-    small, big = cli_run(args, workdir, 1), cli_run(args, workdir, args.spheres)
+    small = cli_run(args, workdir, 1)
     triangles = args.spheres * 2 * args.segments * (args.segments // 2 - 1)
     print(f"scale_report: {args.spheres} spheres of {args.segments}x{args.segments // 2}, 128x128, "
           f"1 spp, 2 threads; load average {os.getloadavg()[0]:.1f}")
-    print(f"  CLI unique     {triangles / 1e6:6.2f} M triangles: peak {big['peak'] / 2**20:7.0f} MiB, "
-          f"{(big['peak'] - small['peak']) / triangles:6.1f} B/triangle over a one-sphere scene; "
-          f"load + BVH + render {big['wall']:.2f} s (render {big['render']:.2f} s)")
+    for kind in ("unique", "instanced"):
+        big = cli_run(args, workdir, args.spheres, instanced=kind == "instanced")
+        print(f"  CLI      {kind:9s} {triangles / 1e6:6.2f} M triangles: peak {big['peak'] / 2**20:7.0f} MiB, "
+              f"{(big['peak'] - small['peak']) / triangles:6.1f} B/triangle over a one-sphere scene; "
+              f"load + BVH + render {big['wall']:.2f} s (render {big['render']:.2f} s)", flush=True)
     for kind in ("unique", "instanced"):
         for engine in ("BXDF_LAB", "CYCLES"):
             r = blender_run(engine, kind, args, workdir)

@@ -11,7 +11,8 @@ different seeds, alternating (BXDF_LAB, Cycles, BXDF_LAB, ...), each render time
 it (bpy.ops.render.render: export, BVH, render, hand-back). The converged reference is the average
 of both engines' `--reference-spp` renders, so neither engine is favoured. Printed per sample count:
 each engine's median time, the time ratio, each engine's RMSE against the reference, and the
-time-to-equal-error ratio (MSE x time; below 1 means BXDF_LAB reaches a given error sooner).
+time-to-equal-error ratio (MSE x time; below 1 means BXDF_LAB reaches a given error sooner), then
+the same ratios on the process's CPU time (steadier than wall time on a shared machine).
 `--json FILE` also writes every number.
 """
 import argparse
@@ -73,7 +74,7 @@ def set_up_scene(scene_name, resolution):
 
 
 def render(engine, spec, spp, seed, threads, path):
-    """Renders once; returns (seconds, HxWx3 linear image)."""
+    """Renders once; returns (seconds, CPU seconds of the whole process, HxWx3 linear image)."""
     import bpy
 
     from compare import driver, engine_setup, imageio
@@ -81,15 +82,16 @@ def render(engine, spec, spp, seed, threads, path):
     configure = engine_setup.configure_cycles if engine == "CYCLES" else engine_setup.configure_bxdf_lab
     configure(spec, spp, seed, threads)
     bpy.context.scene.render.filepath = path
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), time.process_time()
     bpy.ops.render.render(write_still=True)
     seconds = time.perf_counter() - start
+    cpu_seconds = time.process_time() - cpu_start  # every thread of Blender's process
     driver.raise_engine_error(engine, seed)
     if not os.path.isfile(path):
         raise RuntimeError(f"{engine} wrote no image for seed {seed}")
     image = imageio.read(path)
     os.remove(path)
-    return seconds, image
+    return seconds, cpu_seconds, image
 
 
 def main():
@@ -103,7 +105,7 @@ def main():
     work = tempfile.mkdtemp(prefix="bxdf-side-by-side-")
     out = lambda tag: os.path.join(work, f"{tag}.exr")  # noqa: E731
 
-    references = [render(e, spec, args.reference_spp, 9999, args.threads, out(f"ref_{e}"))[1]
+    references = [render(e, spec, args.reference_spp, 9999, args.threads, out(f"ref_{e}"))[2]
                   for e in ENGINES]
     reference = 0.5 * (references[0] + references[1])
     width, height = spec.resolution
@@ -114,21 +116,28 @@ def main():
     rows = []
     for spp in args.spp:
         seconds = {e: [] for e in ENGINES}
+        cpu_seconds = {e: [] for e in ENGINES}
         mse = {e: [] for e in ENGINES}
         for r in range(args.repeats):
             for engine in ENGINES:
-                t, image = render(engine, spec, spp, r, args.threads, out(f"{engine}_{spp}_{r}"))
+                t, cpu, image = render(engine, spec, spp, r, args.threads, out(f"{engine}_{spp}_{r}"))
                 seconds[engine].append(t)
+                cpu_seconds[engine].append(cpu)
                 mse[engine].append(float(np.mean((image - reference) ** 2)))
         row = {"spp": spp}
         for engine in ENGINES:
             row[engine] = {"median_seconds": statistics.median(seconds[engine]),
                            "seconds": seconds[engine],
+                           "median_cpu_seconds": statistics.median(cpu_seconds[engine]),
+                           "cpu_seconds": cpu_seconds[engine],
                            "rmse": float(np.sqrt(np.mean(mse[engine]))),
                            "mse": float(np.mean(mse[engine]))}
         b, c = row["BXDF_LAB"], row["CYCLES"]
         row["time_ratio"] = b["median_seconds"] / c["median_seconds"]
         row["equal_error_ratio"] = (b["mse"] * b["median_seconds"]) / (c["mse"] * c["median_seconds"])
+        row["cpu_ratio"] = b["median_cpu_seconds"] / c["median_cpu_seconds"]
+        row["cpu_equal_error_ratio"] = ((b["mse"] * b["median_cpu_seconds"]) /
+                                        (c["mse"] * c["median_cpu_seconds"]))
         rows.append(row)
     print(f"{'spp':>6} {'BXDF_LAB s':>11} {'Cycles s':>9} {'time ratio':>11} "
           f"{'RMSE BXDF_LAB':>14} {'RMSE Cycles':>12} {'equal-error ratio':>18}")
@@ -137,6 +146,14 @@ def main():
         print(f"{row['spp']:>6} {b['median_seconds']:>11.3f} {c['median_seconds']:>9.3f} "
               f"{row['time_ratio']:>11.2f} {b['rmse']:>14.5f} {c['rmse']:>12.5f} "
               f"{row['equal_error_ratio']:>18.2f}")
+    # On a shared machine the wall times swing with the other load; the process's CPU time (both
+    # engines run 2 threads in this one process) is steadier, and its ratios are printed too.
+    print(f"{'spp':>6} {'BXDF_LAB cpu s':>15} {'Cycles cpu s':>13} {'cpu ratio':>10} "
+          f"{'MSE x cpu ratio':>16}")
+    for row in rows:
+        b, c = row["BXDF_LAB"], row["CYCLES"]
+        print(f"{row['spp']:>6} {b['median_cpu_seconds']:>15.3f} {c['median_cpu_seconds']:>13.3f} "
+              f"{row['cpu_ratio']:>10.2f} {row['cpu_equal_error_ratio']:>16.2f}")
     if args.json:
         with open(args.json, "w", encoding="utf-8") as fh:
             json.dump({"scene": args.scene, "threads": args.threads,

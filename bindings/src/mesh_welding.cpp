@@ -10,8 +10,9 @@ namespace bxdf::python {
 namespace {
 
 // Rows a and b of a width-column array hold the same numbers (bitwise, so -0 and NaN do not merge).
-bool same_values(const float* rows, int64_t a, int64_t b, int width) {
-  return a >= 0 && b >= 0 && std::memcmp(rows + width * a, rows + width * b, sizeof(float) * width) == 0;
+bool same_values(const float* rows, int32_t a, int32_t b, int width) {
+  return a >= 0 && b >= 0 &&
+         std::memcmp(rows + size_t(width) * size_t(a), rows + size_t(width) * size_t(b), sizeof(float) * size_t(width)) == 0;
 }
 
 }  // namespace
@@ -25,46 +26,48 @@ render::Mesh weld_corners(const IndexedMeshArrays& in) {
   if (in.material_indices) out.material_indices.assign(in.material_indices, in.material_indices + in.num_triangles);
 
   // Output vertex → (position, normal, uv) indices; per position, the head of its split list.
-  std::vector<int64_t> head(in.num_positions, -1), next, src_p, src_n, src_uv;
+  // 32-bit, as the input indices are: fewer bytes to allocate and touch per corner.
+  std::vector<int32_t> head(in.num_positions, -1), next, src_p, src_n, src_uv;
   next.reserve(in.num_positions);
   src_p.reserve(in.num_positions);
   for (size_t c = 0; c < corners; ++c) {
-    const int64_t p = in.triangles[c];
-    const int64_t n = has_normals ? in.normal_indices[c] : -1;
-    const int64_t t = has_uvs ? in.uv_indices[c] : -1;
-    int64_t found = -1;
+    const int32_t p = in.triangles[c];
+    const int32_t n = has_normals ? in.normal_indices[c] : -1;
+    const int32_t t = has_uvs ? in.uv_indices[c] : -1;
+    int32_t found = -1;
     int depth = 0;
-    for (int64_t o = head[p]; o >= 0 && depth < kMaxSplitSearch; o = next[o], ++depth) {
+    for (int32_t o = head[size_t(p)]; o >= 0 && depth < kMaxSplitSearch; o = next[size_t(o)], ++depth) {
       // Equal values count as equal attributes: Blender gives every corner its own UV and
       // split-normal index even where the values agree, and those corners should share a vertex.
-      const bool same_normal = src_n[o] == n || same_values(in.normals, src_n[o], n, 3);
-      const bool same_uv = src_uv[o] == t || same_values(in.uvs, src_uv[o], t, 2);
+      const bool same_normal = src_n[size_t(o)] == n || same_values(in.normals, src_n[size_t(o)], n, 3);
+      const bool same_uv = src_uv[size_t(o)] == t || same_values(in.uvs, src_uv[size_t(o)], t, 2);
       if (same_normal && same_uv) {
         found = o;
         break;
       }
     }
     if (found < 0) {
-      found = static_cast<int64_t>(src_p.size());
+      found = static_cast<int32_t>(src_p.size());
       src_p.push_back(p);
       src_n.push_back(n);
       src_uv.push_back(t);
-      next.push_back(head[p]);
-      head[p] = found;
+      next.push_back(head[size_t(p)]);
+      head[size_t(p)] = found;
     }
     out.indices[c] = static_cast<uint32_t>(found);
   }
 
   const size_t nv = src_p.size();
+  out.positions.reserve(3 * nv + 1);  // room for the renderer's padding float (Scene keeps it)
   out.positions.resize(3 * nv);
   if (has_normals) out.normals.resize(3 * nv);
   if (has_uvs) out.uvs.resize(2 * nv);
   for (size_t v = 0; v < nv; ++v) {
-    for (int k = 0; k < 3; ++k) out.positions[3 * v + k] = in.positions[3 * src_p[v] + k];
+    for (int k = 0; k < 3; ++k) out.positions[3 * v + k] = in.positions[3 * size_t(src_p[v]) + k];
     if (has_normals)
-      for (int k = 0; k < 3; ++k) out.normals[3 * v + k] = in.normals[3 * src_n[v] + k];
+      for (int k = 0; k < 3; ++k) out.normals[3 * v + k] = in.normals[3 * size_t(src_n[v]) + k];
     if (has_uvs)
-      for (int k = 0; k < 2; ++k) out.uvs[2 * v + k] = in.uvs[2 * src_uv[v] + k];
+      for (int k = 0; k < 2; ++k) out.uvs[2 * v + k] = in.uvs[2 * size_t(src_uv[v]) + k];
   }
   return out;
 }
@@ -78,10 +81,13 @@ render::Mesh transformed(const render::Mesh& mesh, const std::array<double, 16>&
   out.uv_maps = mesh.uv_maps;
   out.tangents = mesh.tangents;
   out.texture_space = mesh.texture_space;
+  out.visibility = mesh.visibility;
+  out.terminator = mesh.terminator;
   out.object_to_world.resize(12);
   for (int i = 0; i < 12; ++i) out.object_to_world[size_t(i)] = static_cast<float>(m[size_t(i)]);
 
   const size_t nv = mesh.num_vertices();
+  out.positions.reserve(3 * nv + 1);  // room for the renderer's padding float
   out.positions.resize(3 * nv);
   for (size_t v = 0; v < nv; ++v) {
     const double x = mesh.positions[3 * v], y = mesh.positions[3 * v + 1], z = mesh.positions[3 * v + 2];

@@ -15,12 +15,12 @@ namespace bxdf::python {
 struct IndexedMeshArrays {
   const float* positions = nullptr;  // (V, 3)
   size_t num_positions = 0;
-  const int64_t* triangles = nullptr;  // (T, 3) into positions
+  const int32_t* triangles = nullptr;  // (T, 3) into positions
   size_t num_triangles = 0;
   const float* normals = nullptr;        // (N, 3) or null
-  const int64_t* normal_indices = nullptr;  // (T, 3) into normals, or null
+  const int32_t* normal_indices = nullptr;  // (T, 3) into normals, or null
   const float* uvs = nullptr;            // (U, 2) or null
-  const int64_t* uv_indices = nullptr;   // (T, 3) into uvs, or null
+  const int32_t* uv_indices = nullptr;   // (T, 3) into uvs, or null
   const uint32_t* material_indices = nullptr;  // (T,) scene material per triangle
 };
 

@@ -41,6 +41,9 @@ py::array_t<float> image_array(const float* rgba, int width, int height, bool bo
   return image;
 }
 
+// Tile progress reaches on_progress at most this often (pass images and the end at once).
+constexpr std::chrono::milliseconds kTileReportInterval(50);
+
 // What the render thread tells the waiting Python thread.
 struct Channel {
   std::mutex mutex;
@@ -108,6 +111,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
 
   std::optional<py::error_already_set> python_error;  // from on_progress or Ctrl-C
   bool stopped_by_callback = false;
+  auto last_report = std::chrono::steady_clock::now() - kTileReportInterval;  // the first tile at once
   for (;;) {
     uint64_t done = 0, total = 0;
     bool tiles_changed = false, pass_ready = false, finished = false;
@@ -115,9 +119,13 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
     {
       py::gil_scoped_release release;
       std::unique_lock<std::mutex> lock(channel.mutex);
-      // The timeout bounds how late Ctrl-C is noticed when nothing else happens.
-      channel.wake.wait_for(lock, std::chrono::milliseconds(50),
-                            [&] { return channel.finished || channel.tiles_changed || channel.pass_ready; });
+      // The timeout bounds how late Ctrl-C is noticed when nothing else happens. Finished tiles
+      // alone wake Python at most every kTileReportInterval: a call per tile (hundreds in a
+      // short render) took the GIL and a core from the render for nothing a progress bar shows.
+      channel.wake.wait_for(lock, kTileReportInterval, [&] {
+        return channel.finished || channel.pass_ready ||
+               (channel.tiles_changed && std::chrono::steady_clock::now() - last_report >= kTileReportInterval);
+      });
       done = channel.tiles_done;
       total = channel.tiles_total;
       tiles_changed = channel.tiles_changed;
@@ -144,6 +152,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
     try {
       py::object image = pass_ready ? py::object(image_array(pass_image.data(), settings.width, settings.height, bottom_up))
                                     : py::object(py::none());
+      last_report = std::chrono::steady_clock::now();
       py::object keep_going = on_progress(done, total, image);
       // Only an explicit False stops: a callback that returns nothing lets the render go on.
       if (keep_going.ptr() == Py_False) {
@@ -207,8 +216,11 @@ for the partial images too.
   Counter-clockwise triangles face front. Normals and UVs are indexed separately from positions;
   vertices are split only where a corner's (position, normal, uv) triple differs.
 - ``"instance_mesh"``: (I,) int into "meshes" and ``"instance_matrix"``: (I, 4, 4) object→world
-  (affine). Each instance is flattened into world space (normals by the inverse transpose; a
-  mirroring matrix keeps the front). Without these two keys every mesh is drawn once, as is.
+  (affine; each entry in [-1e9, 1e9]). A mesh placed by two or more instances is stored once, in
+  object space, and each placement is an Embree instance of it (memory: one mesh and one BVH); a
+  mesh placed once, or by a singular matrix, is moved into world space (normals by the inverse
+  transpose; a mirroring matrix keeps the front). Without these two keys every mesh is drawn once,
+  as is.
 - ``"lights"``: list of dicts by ``"type"``: ``"point"``: position, intensity (RGB W/sr), radius
   (m: a disk facing the shading point, as Cycles); ``"spot"``: as point plus direction, spot_size
   (full angle, rad), spot_blend; ``"sun"``: direction (the way light travels), irradiance (RGB
@@ -230,7 +242,8 @@ passes through Transparent BSDFs are not bounces, and the surface after this man
 only its emission), ``transparent_background`` (False).
 
 ``on_progress(done, total, image)`` is called on the calling thread, holding the GIL, while the
-render runs on C++ threads: ``done``/``total`` count tiles over the whole render; ``image`` is the
+render runs on C++ threads: ``done``/``total`` count tiles over the whole render (reported at most
+every 50 ms, and once more at the end with ``done == total``); ``image`` is the
 partial result (same layout as the return value) after each pass but the last, else None. Return
 False to cancel (any other return value, None included, continues). The GIL is released while
 waiting, so other Python threads run.
@@ -243,8 +256,10 @@ ValueError naming the field, e.g. ``scene['meshes'][2]['normal_indices']: index 
 With ``return_stats=True`` the result is ``(image, stats)``, stats a dict: ``seconds``,
 ``samples_per_pixel`` (completed), ``camera_samples``, ``rays``, ``shadow_rays``,
 ``rejected_samples`` (NaN/Inf/negative radiance dropped), ``cancelled``, ``warnings`` (list of str:
-what was rendered approximately), and for :func:`render` ``convert_seconds`` (reading, welding and
-flattening the meshes) and ``bvh_seconds`` (building Embree's BVH); ``seconds`` is the render alone.)doc";
+what was rendered approximately), ``triangles`` (as drawn), ``stored_triangles`` (an instanced mesh
+counted once) and ``instances`` (Embree instances), and for :func:`render` ``convert_seconds``
+(reading, welding and flattening the meshes) and ``bvh_seconds`` (building Embree's BVH);
+``seconds`` is the render alone.)doc";
 
 constexpr const char* kRenderFileDoc = R"doc(render_scene_file(path, settings=None, on_progress=None, *, bottom_up=False, return_stats=False) -> image or (image, stats)
 
@@ -253,6 +268,14 @@ object gives the resolution and settings; ``settings`` (same keys as :func:`rend
 Everything else is as :func:`render`; a bad file raises ValueError naming the file and the JSON path.)doc";
 
 }  // namespace
+
+// What the scene holds: triangles as drawn, triangles stored (an instanced mesh once) and
+// instances, for stats (memory and scale reports).
+static void scene_counts(const render::Scene& scene, py::dict& out) {
+  out["triangles"] = scene.num_rendered_triangles();
+  out["stored_triangles"] = scene.num_triangles();
+  out["instances"] = scene.num_instances();
+}
 
 void bind_render(py::module_& m) {
   m.def(
@@ -269,6 +292,7 @@ void bind_render(py::module_& m) {
         py::dict times;
         times["convert_seconds"] = s.convert_seconds;
         times["bvh_seconds"] = s.bvh_seconds;
+        scene_counts(*s.scene, times);
         return run_render(*s.scene, s.camera, rs, on_progress, bottom_up, return_stats, std::move(s.warnings), times);
       },
       py::arg("scene"), py::arg("settings") = py::none(), py::arg("on_progress") = py::none(), py::kw_only(),
@@ -285,7 +309,9 @@ void bind_render(py::module_& m) {
           loaded = render::load_scene_json(file);
         }
         apply_render_settings(settings, loaded.settings);
-        return run_render(*loaded.scene, loaded.camera, loaded.settings, on_progress, bottom_up, return_stats, {}, py::dict());
+        py::dict counts;
+        scene_counts(*loaded.scene, counts);
+        return run_render(*loaded.scene, loaded.camera, loaded.settings, on_progress, bottom_up, return_stats, {}, counts);
       },
       py::arg("path"), py::arg("settings") = py::none(), py::arg("on_progress") = py::none(), py::kw_only(),
       py::arg("bottom_up") = false, py::arg("return_stats") = false, kRenderFileDoc);

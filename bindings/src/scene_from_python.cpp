@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 #include "bxdf/params.h"
@@ -27,7 +28,8 @@ using render::Light;
 using render::Material;
 using render::Mesh;
 
-using IndexArray = py::array_t<int64_t, py::array::c_style | py::array::forcecast>;
+// int32, Blender's own index type: its arrays are used in place, not widened into copies.
+using IndexArray = py::array_t<int32_t, py::array::c_style | py::array::forcecast>;
 using Float32Array = py::array_t<float, py::array::c_style | py::array::forcecast>;
 using Float64Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
@@ -133,6 +135,19 @@ Array real_array(py::handle v, const std::string& path, std::vector<py::ssize_t>
     got += a.ndim() == 1 ? ",)" : ")";
     refuse(path, "has shape " + got + "; expected " + expected);
   }
+  if constexpr (std::is_same_v<typename Array::value_type, int32_t>) {
+    // Wider integers are narrowed by forcecast, which would wrap: refuse what does not fit.
+    if (a.size() > 0 && (a.itemsize() > 4 || (kind == 'u' && a.itemsize() == 4))) {
+      for (const char* end : {"min", "max"}) {
+        const py::object x = a.attr(end)();
+        const py::int_ lo(std::numeric_limits<int32_t>::min()), hi(std::numeric_limits<int32_t>::max());
+        if (PyObject_RichCompareBool(x.ptr(), lo.ptr(), Py_LT) == 1 ||
+            PyObject_RichCompareBool(x.ptr(), hi.ptr(), Py_GT) == 1)
+          refuse(path, "has index " + py::str(x).cast<std::string>() +
+                           ", outside the 32-bit range [-2147483648, 2147483647]");
+      }
+    }
+  }
   return Array::ensure(a);
 }
 
@@ -143,7 +158,7 @@ void require_finite(const float* p, size_t n, size_t width, const std::string& p
 }
 
 void require_indices(const IndexArray& a, long long lo, long long hi, const std::string& path) {
-  const int64_t* p = a.data();
+  const int32_t* p = a.data();
   const size_t n = static_cast<size_t>(a.size());
   const size_t width = a.ndim() == 2 ? static_cast<size_t>(a.shape(1)) : 1;
   for (size_t i = 0; i < n; ++i)
@@ -557,6 +572,9 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
     for (py::ssize_t i = 0; i < im.shape(0); ++i) {
       const std::string p = item_path(key_path(root, "instance_matrix"), static_cast<size_t>(i));
       instance_matrix.push_back(checked_matrix(ix.data() + 16 * i, p, true));
+      for (double x : instance_matrix.back())  // the renderer's coordinate range (ray.h)
+        if (std::abs(x) > render::kMaxSceneCoordinate)
+          refuse(p, "has " + num(x) + "; expected entries in [-1e9, 1e9]");
     }
   }
 
@@ -576,34 +594,72 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
   // The heavy part (welding, transforming, copying, the BVH) needs no Python.
   {
     py::gil_scoped_release release;
-    std::vector<Mesh> welded(meshes.size());
-    for (size_t i = 0; i < meshes.size(); ++i)
-      if (meshes[i].arrays.num_triangles > 0) {
-        welded[i] = weld_corners(meshes[i].arrays);
-        apply_graph_attributes(meshes[i].graph_attributes, welded[i]);
-      }
-    auto add = [&](const Mesh& mesh, const MeshInput& in, const std::string& what) {
-      if (mesh.num_triangles() == 0) return;
+    // One mesh at a time: welded, then handed over to the scene (moved, not copied), so that at
+    // most one welded mesh exists besides the scene's.
+    auto weld = [&](size_t i) {
+      Mesh w = weld_corners(meshes[i].arrays);
+      apply_graph_attributes(meshes[i].graph_attributes, w);
+      w.visibility = meshes[i].visibility;
+      w.terminator = meshes[i].terminator;
+      return w;
+    };
+    auto add = [&](Mesh&& mesh, const std::string& what, bool as_instanced) -> int64_t {
+      if (mesh.num_triangles() == 0) return -1;
       try {
-        render::MeshView view = mesh.view();
-        view.visibility = in.visibility;
-        view.terminator = in.terminator;
-        scene.add_mesh(view);
+        return static_cast<int64_t>(as_instanced ? scene.add_instanced_mesh(std::move(mesh))
+                                                 : scene.add_mesh(std::move(mesh)));
       } catch (const std::invalid_argument& e) {
         refuse(what, e.what());
       }
     };
     if (instanced) {
+      // A mesh placed more than once is stored once and drawn through Embree instances; one
+      // placed once (or by a singular matrix, which has no object space) is moved into world
+      // space, as Cycles applies the transform of an object whose geometry is not shared.
+      auto invertible = [](const std::array<double, 16>& m) {
+        const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+                           m[2] * (m[4] * m[9] - m[5] * m[8]);
+        return std::abs(det) > 1e-30;
+      };
+      std::vector<size_t> placements(meshes.size(), 0), flattened_uses(meshes.size(), 0);
       for (size_t i = 0; i < instance_mesh.size(); ++i)
-        add(transformed(welded[static_cast<size_t>(instance_mesh[i])], instance_matrix[i]),
-            meshes[static_cast<size_t>(instance_mesh[i])], item_path(key_path(root, "instance_mesh"), i));
-    } else {
-      for (size_t i = 0; i < welded.size(); ++i) {
-        add(welded[i], meshes[i], item_path(key_path(root, "meshes"), i));
-        welded[i] = Mesh();  // the scene holds its own copy: free this one at once
+        if (invertible(instance_matrix[i])) ++placements[static_cast<size_t>(instance_mesh[i])];
+      std::vector<int64_t> scene_mesh(meshes.size(), -1);
+      for (size_t m = 0; m < meshes.size(); ++m)
+        if (placements[m] > 1 && meshes[m].arrays.num_triangles > 0)
+          scene_mesh[m] = add(weld(m), item_path(key_path(root, "meshes"), m), true);
+      for (size_t i = 0; i < instance_mesh.size(); ++i) {
+        const size_t m = static_cast<size_t>(instance_mesh[i]);
+        if (scene_mesh[m] < 0 || !invertible(instance_matrix[i])) ++flattened_uses[m];
       }
+      // Welded meshes moved into world space more than once are kept until their last use.
+      std::vector<Mesh> kept(meshes.size());
+      for (size_t i = 0; i < instance_mesh.size(); ++i) {
+        const size_t m = static_cast<size_t>(instance_mesh[i]);
+        if (meshes[m].arrays.num_triangles == 0) continue;
+        if (scene_mesh[m] < 0 || !invertible(instance_matrix[i])) {
+          const std::string what = item_path(key_path(root, "instance_mesh"), i);
+          if (flattened_uses[m] == 1) {
+            add(transformed(weld(m), instance_matrix[i]), what, false);
+          } else {
+            if (kept[m].num_triangles() == 0) kept[m] = weld(m);
+            add(transformed(kept[m], instance_matrix[i]), what, false);
+            if (--flattened_uses[m] == 0) kept[m] = Mesh();
+          }
+          continue;
+        }
+        float rows[12];
+        for (int k = 0; k < 12; ++k) rows[k] = static_cast<float>(instance_matrix[i][static_cast<size_t>(k)]);
+        try {
+          scene.add_instance(static_cast<uint32_t>(scene_mesh[m]), rows);
+        } catch (const std::invalid_argument& e) {
+          refuse(item_path(key_path(root, "instance_matrix"), i), e.what());
+        }
+      }
+    } else {
+      for (size_t i = 0; i < meshes.size(); ++i)
+        if (meshes[i].arrays.num_triangles > 0) add(weld(i), item_path(key_path(root, "meshes"), i), false);
     }
-    std::vector<Mesh>().swap(welded);  // before the BVH build, the peak of a render's memory
     const auto converted = std::chrono::steady_clock::now();
     scene.commit();
     out.convert_seconds = std::chrono::duration<double>(converted - started).count();

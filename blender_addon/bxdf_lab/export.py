@@ -10,7 +10,8 @@ so it can be tested, pickled, or handed to the renderer's binding unchanged.
                   "triangles": (T, 3) int32 indices into positions,
                   "normals": (N, 3) float32 and "normal_indices": (T, 3) int32: the shading
                       normal at corner k of triangle t is normals[normal_indices[t, k]] (smooth,
-                      flat, auto-smooth or custom normals, as Blender shades them),
+                      flat, auto-smooth or custom normals, as Blender shades them); both None
+                      when every face is flat (each triangle shaded with its own normal),
                   "uvs": (U, 2) float32 and "uv_indices": (T, 3) int32, or both None without a
                       UV map,
                   "material_indices": (T,) int32 into "materials", -1 = no material}],
@@ -26,6 +27,12 @@ so it can be tested, pickled, or handed to the renderer's binding unchanged.
 
 Each mesh also carries its object's "visible_camera", "visible_shadow" and "terminator_offset"
 (Cycles' geometry and shading offsets).
+
+A mesh is exported once however many objects show it: objects whose evaluated geometry is the
+same (linked duplicates without modifiers, collection instances, geometry-nodes instances from
+depsgraph.object_instances) with the same materials, visibility and offsets share one entry of
+"meshes", and each adds only an instance (the renderer then stores the mesh once, see
+bxdf.render). An object with modifiers has geometry of its own, as in Cycles.
 
 Mesh attributes are indexed separately from positions (as in OBJ), so that a flat face or a UV
 seam needs no duplicated vertices and a smooth mesh shares one normal per vertex.
@@ -111,8 +118,10 @@ def mesh_arrays(mesh):
             mesh.polygons.foreach_get("normal", polygon_normals)
             flat_index = (n_vertices + triangle_polygon)[:, None]
             if not smooth.any():
-                normals = polygon_normals.reshape(n_polygons, 3)
-                normal_indices = np.repeat(triangle_polygon[:, None], 3, axis=1)
+                # All flat: no normals at all. The renderer shades each triangle with its own
+                # normal, as Cycles does for flat faces, and welding splits no vertex by normal
+                # (a flat mesh stored with face normals per corner takes three times the memory).
+                normals = normal_indices = None
             else:
                 normals = np.concatenate([vertex_normals, polygon_normals.reshape(n_polygons, 3)])
                 normal_indices = np.where(smooth[triangle_polygon][:, None], triangles, flat_index)
@@ -128,7 +137,7 @@ def mesh_arrays(mesh):
         "positions": positions.reshape(n_vertices, 3),
         "triangles": triangles,
         "normals": normals,
-        "normal_indices": np.ascontiguousarray(normal_indices, dtype=np.int32),
+        "normal_indices": None if normal_indices is None else np.ascontiguousarray(normal_indices, dtype=np.int32),
         "uvs": uvs,
         "uv_indices": uv_indices,
         "material_indices": polygon_material[triangle_polygon],
@@ -189,6 +198,19 @@ def _object_mesh(obj, materials):
     return data
 
 
+def _shared_mesh_key(obj):
+    """What decides whether two evaluated objects can share one exported mesh: the evaluated
+    geometry itself (its address as an identity key, never read through: linked duplicates and
+    instances point to the same evaluated data, a modified object to its own) and everything
+    _object_mesh takes from the object rather than from the geometry."""
+    slots = tuple(slot.material.original.name if slot.material else None for slot in obj.material_slots)
+    cycles = getattr(obj, "cycles", None)
+    offsets = (float(getattr(cycles, "shadow_terminator_geometry_offset", 0.1)),
+               float(getattr(cycles, "shadow_terminator_offset", 0.0)))
+    geometry = obj.data.as_pointer() if obj.data is not None else ("object", obj.name)
+    return (obj.type, geometry, slots, bool(obj.visible_camera), bool(obj.visible_shadow), offsets)
+
+
 def resolution(scene):
     r = scene.render
     return (int(r.resolution_x * r.resolution_percentage / 100),
@@ -241,7 +263,7 @@ def export_scene(depsgraph):
             continue
         if obj.type not in GEOMETRY_TYPES:
             continue
-        key = (obj.name, obj.data.name if obj.data else "")
+        key = _shared_mesh_key(obj)
         if key not in mesh_index:
             data = _object_mesh(obj, materials)
             if data is None or len(data["triangles"]) == 0:

@@ -80,9 +80,10 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
       thread_local Vec3 registers[MaterialGraph::kMaxRegisters];
       Hit at;
       at.mesh = light->mesh;
+      at.instance = light->instance;
       at.triangle = light->triangles[size_t(ls.triangle)].triangle;
-      at.b1 = ls.b1;
-      at.b2 = ls.b2;
+      at.b1 = light->mirrored ? ls.b2 : ls.b1;
+      at.b2 = light->mirrored ? ls.b1 : ls.b2;
       at.t = ls.distance;
       ls.radiance = textured_emission(scene_, at, -ls.wi, registers);
     }
@@ -279,7 +280,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
         L += beta * emitted;
       } else {
         // Weighted against light sampling of the mesh's light (constant or textured).
-        const int li = scene_.area_light_of_mesh(hit.mesh);
+        const int li = scene_.area_light_of(hit);
         const float lp = li < 0 ? 0.0f
                                 : scene_.light_sampler().probability(size_t(li)) *
                                       mesh_light_pdf(lights[size_t(li)], prev_p, sp.p, sp.ng);

@@ -154,17 +154,11 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
         // reflection, done here once per map.
         // The smooth normal is unnormalised (shorter between differing vertex normals), and
         // keeps its length in object space as Cycles' object-space interpolation has it.
-        // (Without rotation or scale, object space is world space: both maps are skipped.)
         const Vec3 smooth = scene.smooth_normal(hit);
-        const bool object_space = !scene.normals_in_world_space(hit);
-        Vec3 normal = smooth;
-        if (object_space) {
-          normal = scene.normal_to_object(hit, smooth);
-          const float object_length = length(normal);
-          if (object_length > 0.0f) normal = normal * (length(smooth) / object_length);
-        }
-        Vec3 mapped = normal_map_compose(in(1), tangent, sign, normal);
-        if (object_space) mapped = scene.normal_to_world(hit, mapped);
+        Vec3 normal = scene.normal_to_object(hit, smooth);
+        const float object_length = length(normal);
+        if (object_length > 0.0f) normal = normal * (length(smooth) / object_length);
+        Vec3 mapped = scene.normal_to_world(hit, normal_map_compose(in(1), tangent, sign, normal));
         if (!normalize_direction(mapped)) mapped = Vec3(0.0f, 0.0f, 0.0f);
         out[0] = ensure_valid_reflection(
             ctx.ng, ctx.incoming, normal_map_finish(mapped, in_float(0), ctx.n, ctx.backfacing));

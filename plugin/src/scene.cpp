@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "bxdf/params.h"
 #include "bxdf/render/textured_emission.h"
@@ -17,8 +18,11 @@ namespace bxdf::render {
 struct Scene::EmbreeState {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::vector<RTCScene> instanced;  // per mesh: its own scene when it is instanced, else null
   ~EmbreeState() {
     if (scene) rtcReleaseScene(scene);
+    for (RTCScene s : instanced)
+      if (s) rtcReleaseScene(s);
     if (device) rtcReleaseDevice(device);
   }
 };
@@ -40,6 +44,10 @@ std::string embree_error(RTCDevice device) {
 }
 
 constexpr float kHuge = 3.0e38f;
+// From this many stored triangles on, BVHs are built compact (RTC_SCENE_FLAG_COMPACT, as Cycles
+// always builds them): indexed triangles instead of vertex copies, measured ~60 instead of ~120
+// bytes per triangle, for somewhat slower traversal that only scenes this large should pay.
+constexpr size_t kCompactBvhTriangles = 2'000'000;
 // Embree geometry masks: which kinds of ray see a mesh.
 constexpr unsigned kMaskCamera = 1u, kMaskShadow = 2u, kMaskOther = 4u;
 
@@ -51,28 +59,6 @@ void require_finite(const float* p, size_t n, size_t width, const std::string& w
   for (size_t i = 0; i < n * width; ++i)
     if (!std::isfinite(p[i]))
       throw ParameterError(what + "[" + std::to_string(i / width) + "] is not finite");
-}
-
-// Inverse of an affine 3×4 matrix; false when it is singular.
-bool invert_affine(const float* m, std::array<float, 12>* out) {
-  const double a = m[0], b = m[1], c = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9],
-               k = m[10];
-  const double det = a * (e * k - f * h) - b * (d * k - f * g) + c * (d * h - e * g);
-  if (!(std::fabs(det) > 1e-30)) return false;
-  const double inv[9] = {(e * k - f * h) / det, (c * h - b * k) / det, (b * f - c * e) / det,
-                         (f * g - d * k) / det, (a * k - c * g) / det, (c * d - a * f) / det,
-                         (d * h - e * g) / det, (b * g - a * h) / det, (a * e - b * d) / det};
-  for (int r = 0; r < 3; ++r) {
-    for (int col = 0; col < 3; ++col) (*out)[size_t(4 * r + col)] = float(inv[3 * r + col]);
-    (*out)[size_t(4 * r + 3)] =
-        float(-(inv[3 * r] * m[3] + inv[3 * r + 1] * m[7] + inv[3 * r + 2] * m[11]));
-  }
-  return true;
-}
-
-Vec3 apply_affine(const std::array<float, 12>& m, const Vec3& p) {
-  return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
-          m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
 }
 
 // η_t/η_i of a graph's first transmissive closure with constant eta_i/eta_t (1 otherwise).
@@ -106,15 +92,12 @@ void Scene::add_graph_attributes(const MeshView& m, const std::string& who, Stor
   }
   if (m.object_to_world) {
     require_finite(m.object_to_world, 1, 12, who + ": object_to_world");
-    if (!invert_affine(m.object_to_world, &s.world_to_object))
+    if (!s.object.set(m.object_to_world))
       throw ParameterError(who + ": object_to_world is singular (no object coordinates)");
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) s.object_linear[size_t(3 * r + c)] = m.object_to_world[4 * r + c];
-    s.linear_identity = s.object_linear == std::array<float, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1};
   }
   // Tangents arrive in world space (moved with the mesh); normal maps work in object space,
   // as Cycles does, so they are taken back once here.
-  const float* w = s.world_to_object.data();
+  const float* w = s.object.to_object.data();
   for (std::vector<float>& tangents : s.tangents)
     for (size_t c = 0; c < tangents.size() / 4; ++c) {
       float* v = &tangents[4 * c];
@@ -132,7 +115,7 @@ void Scene::add_graph_attributes(const MeshView& m, const std::string& who, Stor
     // Blender's automatic texture space: the object-space bounding box, a zero extent as 1.
     Vec3 lo(kInf, kInf, kInf), hi(-kInf, -kInf, -kInf);
     for (size_t i = 0; i < m.num_vertices; ++i) {
-      const Vec3 p = apply_affine(s.world_to_object, load3(s.positions, uint32_t(i)));
+      const Vec3 p = s.object.point_to_object(load3(s.positions, uint32_t(i)));
       lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
       hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
     }
@@ -189,9 +172,54 @@ uint32_t Scene::add_material(Material material) {
   return static_cast<uint32_t>(materials_.size() - 1);
 }
 
-uint32_t Scene::add_mesh(const MeshView& m) {
+uint32_t Scene::add_mesh(const MeshView& m) { return store_mesh(m, false, nullptr); }
+
+uint32_t Scene::add_instanced_mesh(const MeshView& m) { return store_mesh(m, true, nullptr); }
+
+uint32_t Scene::add_mesh(Mesh&& mesh) { return store_mesh(mesh.view(), false, &mesh); }
+
+uint32_t Scene::add_instanced_mesh(Mesh&& mesh) { return store_mesh(mesh.view(), true, &mesh); }
+
+namespace {
+
+// Takes the owned vector (its buffer, which `view` points into, moves along unchanged) or
+// copies the view's `count` floats or indices.
+template <typename T>
+void take_or_copy(std::vector<T>* owned, const T* view, size_t count, std::vector<T>* out) {
+  if (owned && owned->data() == view && owned->size() == count) {
+    *out = std::move(*owned);
+  } else {
+    out->assign(view, view + count);
+  }
+}
+
+}  // namespace
+
+uint32_t Scene::add_instance(uint32_t mesh, const float* object_to_world) {
+  const std::string who = "instance " + std::to_string(instances_.size());
+  if (committed_) throw ParameterError("add_instance: the scene is already committed");
+  if (mesh >= meshes_.size() || !meshes_[mesh].instanced)
+    throw ParameterError(who + ": mesh " + std::to_string(mesh) +
+                         " is not an instanced mesh (add_instanced_mesh)");
+  if (!object_to_world) throw ParameterError(who + ": object_to_world is missing");
+  for (int i = 0; i < 12; ++i)
+    if (!(std::fabs(object_to_world[i]) <= kMaxSceneCoordinate))  // NaN fails too
+      throw ParameterError(who + ": object_to_world[" + std::to_string(i) + "] is " +
+                           std::to_string(object_to_world[i]) + ", outside [-1e9, 1e9]");
+  StoredInstance inst;
+  inst.mesh = mesh;
+  if (!inst.object.set(object_to_world))
+    throw ParameterError(who + ": object_to_world is singular (a placement must be invertible)");
+  instances_.push_back(inst);
+  return static_cast<uint32_t>(instances_.size() - 1);
+}
+
+uint32_t Scene::store_mesh(const MeshView& m, bool instanced, Mesh* owned) {
   if (committed_) throw ParameterError("add_mesh: the scene is already committed");
   const std::string who = "mesh " + std::to_string(meshes_.size());
+  if (instanced && m.object_to_world)
+    throw ParameterError(who + ": an instanced mesh is in its own object space; its "
+                               "object_to_world must be null (each instance places it)");
   if (!m.positions || m.num_vertices == 0)
     throw ParameterError(who + ": positions are empty (need an array of shape (V, 3))");
   if (!m.indices || m.num_triangles == 0)
@@ -199,13 +227,16 @@ uint32_t Scene::add_mesh(const MeshView& m) {
   if (m.num_vertices > 0xffffffffull || m.num_triangles > 0x3fffffffull)
     throw ParameterError(who + ": too many vertices or triangles");
   StoredMesh s;
-  s.positions.assign(m.positions, m.positions + 3 * m.num_vertices);
+  s.instanced = instanced;
+  s.num_vertices = m.num_vertices;
+  take_or_copy(owned ? &owned->positions : nullptr, m.positions, 3 * m.num_vertices, &s.positions);
+  s.positions.reserve(3 * m.num_vertices + 1);  // a no-op when the owner left room for the pad
   for (size_t i = 0; i < s.positions.size(); ++i)
     if (!(std::fabs(s.positions[i]) <= kMaxSceneCoordinate))  // NaN fails too
       throw ParameterError(who + ": positions[" + std::to_string(i / 3) + "] has the coordinate " +
                            std::to_string(s.positions[i]) + ", outside [-1e9, 1e9] m");
   if (m.normals) {
-    s.normals.assign(m.normals, m.normals + 3 * m.num_vertices);
+    take_or_copy(owned ? &owned->normals : nullptr, m.normals, 3 * m.num_vertices, &s.normals);
     for (size_t i = 0; i < m.num_vertices; ++i) {
       Vec3 n = load3(s.normals, static_cast<uint32_t>(i));
       // A zero or broken normal falls back to the face normal at shading time.
@@ -214,13 +245,13 @@ uint32_t Scene::add_mesh(const MeshView& m) {
     }
   }
   if (m.uvs) {
-    s.uvs.assign(m.uvs, m.uvs + 2 * m.num_vertices);
+    take_or_copy(owned ? &owned->uvs : nullptr, m.uvs, 2 * m.num_vertices, &s.uvs);
     for (size_t i = 0; i < s.uvs.size(); ++i)
       if (!std::isfinite(s.uvs[i]))
         throw ParameterError(who + ": uvs[" + std::to_string(i / 2) + "] is not finite");
   }
   add_graph_attributes(m, who, s);
-  s.indices.assign(m.indices, m.indices + 3 * m.num_triangles);
+  take_or_copy(owned ? &owned->indices : nullptr, m.indices, 3 * m.num_triangles, &s.indices);
   for (size_t i = 0; i < s.indices.size(); ++i)
     if (s.indices[i] >= m.num_vertices)
       throw ParameterError(who + ": indices[" + std::to_string(i / 3) + "] has vertex " +
@@ -236,7 +267,8 @@ uint32_t Scene::add_mesh(const MeshView& m) {
   s.visibility = m.visibility;
   s.terminator = m.terminator;
   if (m.material_indices) {
-    s.material_indices.assign(m.material_indices, m.material_indices + m.num_triangles);
+    take_or_copy(owned ? &owned->material_indices : nullptr, m.material_indices, m.num_triangles,
+                 &s.material_indices);
     for (size_t i = 0; i < s.material_indices.size(); ++i)
       if (s.material_indices[i] >= materials_.size())
         throw ParameterError(who + ": material_indices[" + std::to_string(i) + "] is " +
@@ -246,6 +278,7 @@ uint32_t Scene::add_mesh(const MeshView& m) {
     throw ParameterError(who + ": material " + std::to_string(m.material) + ", but there are " +
                          std::to_string(materials_.size()) + " materials");
   }
+  s.positions.push_back(0.0f);  // Embree's 16-byte read past the last vertex
   meshes_.push_back(std::move(s));
   return static_cast<uint32_t>(meshes_.size() - 1);
 }
@@ -274,6 +307,96 @@ size_t Scene::num_triangles() const {
   return n;
 }
 
+size_t Scene::num_rendered_triangles() const {
+  size_t n = 0;
+  for (const StoredMesh& m : meshes_)
+    if (!m.instanced) n += m.indices.size() / 3;
+  for (const StoredInstance& i : instances_) n += meshes_[i.mesh].indices.size() / 3;
+  return n;
+}
+
+namespace {
+
+// A triangle geometry over the mesh's own arrays (shared with Embree, not copied).
+RTCGeometry triangle_geometry(RTCDevice device, const float* positions, size_t num_vertices,
+                              const uint32_t* indices, size_t num_triangles) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions, 0,
+                             3 * sizeof(float), num_vertices);
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0,
+                             3 * sizeof(uint32_t), num_triangles);
+  rtcCommitGeometry(g);
+  return g;
+}
+
+unsigned visibility_mask(const MeshVisibility& v) {
+  return kMaskOther | (v.camera ? kMaskCamera : 0u) | (v.shadow ? kMaskShadow : 0u);
+}
+
+}  // namespace
+
+Vec3 Scene::world_vertex(const StoredMesh& m, const Hit& hit, uint32_t vertex) const {
+  const Vec3 p = load3(m.positions, vertex);
+  const ObjectTransform* placed = placement(hit);
+  return placed ? placed->point_to_world(p) : p;
+}
+
+// One mesh light from the emissive triangles of a mesh, in world space (moved by `placed` for
+// an instance, with the winding kept as the instance's normals have it).
+void Scene::add_mesh_light(uint32_t mesh, uint32_t instance, int* light_index) {
+  const StoredMesh& m = meshes_[mesh];
+  const ObjectTransform* placed = instance == kNotInstanced ? nullptr : &instances_[instance].object;
+  Light area;
+  area.type = LightType::Mesh;
+  area.mesh = mesh;
+  area.instance = instance;
+  area.mirrored = placed && placed->mirrors;
+  std::vector<Vec3> registers;  // for the textured estimates, allocated once if needed
+  for (size_t t = 0; t < m.indices.size() / 3; ++t) {
+    const uint32_t mat = m.material_indices.empty() ? m.material : m.material_indices[t];
+    const Material& material = materials_[mat];
+    const bool textured = material.graph && !material.graph->emission_is_constant();
+    RGB le = material.emission;
+    if (textured) {
+      // The power estimate: the emission at the centroid, seen along the normal.
+      if (registers.empty()) registers.resize(MaterialGraph::kMaxRegisters);
+      Hit centroid;
+      centroid.mesh = mesh;
+      centroid.instance = instance;
+      centroid.triangle = static_cast<uint32_t>(t);
+      centroid.b1 = centroid.b2 = 1.0f / 3.0f;
+      le = textured_emission(*this, centroid, surface_point(centroid).ng, registers.data());
+    } else if (le.is_black()) {
+      continue;
+    }
+    Vec3 p[3];
+    for (int k = 0; k < 3; ++k) {
+      p[k] = load3(m.positions, m.indices[3 * t + size_t(k)]);
+      if (placed) p[k] = placed->point_to_world(p[k]);
+    }
+    // A mirroring placement flips the winding; vertices 1 and 2 trade places (and so do a
+    // sample's barycentrics: Light::mirrored).
+    if (area.mirrored) std::swap(p[1], p[2]);
+    EmissiveTriangle tri;
+    tri.p0 = p[0];
+    tri.e1 = p[1] - tri.p0;
+    tri.e2 = p[2] - tri.p0;
+    Vec3 n = cross(tri.e1, tri.e2);
+    tri.area = 0.5f * length(n);
+    if (!normalize_direction(n) || !(tri.area > 0.0f)) continue;  // degenerate: cannot emit
+    tri.normal = n;
+    tri.radiance = le;
+    tri.triangle = static_cast<uint32_t>(t);
+    tri.textured = textured;
+    area.total_area += tri.area;
+    area.cdf.push_back(area.total_area);
+    area.triangles.push_back(tri);
+  }
+  if (area.triangles.empty()) return;
+  *light_index = static_cast<int>(lights_.size());
+  lights_.push_back(std::move(area));
+}
+
 void Scene::commit() {
   if (committed_) return;
   EmbreeState& e = *embree_;
@@ -284,81 +407,76 @@ void Scene::commit() {
   // took ~20x longer to build (1.1 s against 0.06 s for 50k triangles) for a few percent faster
   // traversal, which a render of a few seconds never wins back.
   rtcSetSceneBuildQuality(e.scene, RTC_BUILD_QUALITY_MEDIUM);
+  const bool compact = num_triangles() >= kCompactBvhTriangles;
+  if (compact) rtcSetSceneFlags(e.scene, RTC_SCENE_FLAG_COMPACT);
   const bool masks = rtcGetDeviceProperty(e.device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0;
   for (const StoredMesh& m : meshes_)
     if (!masks && (!m.visibility.camera || !m.visibility.shadow))
       throw std::runtime_error("Embree: this build has no ray masks, which camera and shadow "
                                "visibility need");
   Vec3 lo(kHuge, kHuge, kHuge), hi(-kHuge, -kHuge, -kHuge);
-  for (const StoredMesh& m : meshes_) {
-    for (size_t i = 0; i < m.positions.size(); i += 3) {
-      lo = Vec3(std::min(lo.x, m.positions[i]), std::min(lo.y, m.positions[i + 1]),
-                std::min(lo.z, m.positions[i + 2]));
-      hi = Vec3(std::max(hi.x, m.positions[i]), std::max(hi.y, m.positions[i + 1]),
-                std::max(hi.z, m.positions[i + 2]));
+  auto grow = [&](const Vec3& p) {
+    lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+    hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+  };
+  // Object-space bounds of the instanced meshes, whose placements' corners bound the scene.
+  std::vector<std::array<Vec3, 2>> object_bounds(meshes_.size());
+  e.instanced.assign(meshes_.size(), nullptr);
+  for (size_t mi = 0; mi < meshes_.size(); ++mi) {
+    const StoredMesh& m = meshes_[mi];
+    Vec3 mlo(kHuge, kHuge, kHuge), mhi(-kHuge, -kHuge, -kHuge);
+    for (size_t i = 0; i < m.num_vertices; ++i) {
+      const Vec3 p = load3(m.positions, uint32_t(i));
+      mlo = Vec3(std::min(mlo.x, p.x), std::min(mlo.y, p.y), std::min(mlo.z, p.z));
+      mhi = Vec3(std::max(mhi.x, p.x), std::max(mhi.y, p.y), std::max(mhi.z, p.z));
     }
-    RTCGeometry g = rtcNewGeometry(e.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    if (masks)
-      rtcSetGeometryMask(g, kMaskOther | (m.visibility.camera ? kMaskCamera : 0u) |
-                                (m.visibility.shadow ? kMaskShadow : 0u));
-    const size_t nv = m.positions.size() / 3, nt = m.indices.size() / 3;
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
-    auto* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), nt));
-    if (!vb || !ib) throw std::runtime_error("Embree: " + embree_error(e.device));
-    std::memcpy(vb, m.positions.data(), m.positions.size() * sizeof(float));
-    std::memcpy(ib, m.indices.data(), m.indices.size() * sizeof(uint32_t));
+    object_bounds[mi] = {mlo, mhi};
+    RTCGeometry g = triangle_geometry(e.device, m.positions.data(), m.num_vertices,
+                                      m.indices.data(), m.indices.size() / 3);
+    if (m.instanced) {
+      // Its own scene, which every instance references; visibility is tested on the instance.
+      e.instanced[mi] = rtcNewScene(e.device);
+      rtcSetSceneBuildQuality(e.instanced[mi], RTC_BUILD_QUALITY_MEDIUM);
+      if (compact) rtcSetSceneFlags(e.instanced[mi], RTC_SCENE_FLAG_COMPACT);
+      rtcAttachGeometryByID(e.instanced[mi], g, 0);
+      rtcReleaseGeometry(g);
+      rtcCommitScene(e.instanced[mi]);
+      continue;
+    }
+    grow(mlo);
+    grow(mhi);
+    if (masks) rtcSetGeometryMask(g, visibility_mask(m.visibility));
     rtcCommitGeometry(g);
-    rtcAttachGeometry(e.scene, g);  // ids are 0, 1, ... in order: the mesh index
+    rtcAttachGeometryByID(e.scene, g, static_cast<unsigned>(mi));  // geometry id = mesh index
     rtcReleaseGeometry(g);
+  }
+  for (size_t ii = 0; ii < instances_.size(); ++ii) {
+    const StoredInstance& inst = instances_[ii];
+    RTCGeometry g = rtcNewGeometry(e.device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, e.instanced[inst.mesh]);
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, inst.object.to_world.data());
+    if (masks) rtcSetGeometryMask(g, visibility_mask(meshes_[inst.mesh].visibility));
+    rtcCommitGeometry(g);
+    // Instances follow the meshes in the id space: id − num_meshes is the instance index.
+    rtcAttachGeometryByID(e.scene, g, static_cast<unsigned>(meshes_.size() + ii));
+    rtcReleaseGeometry(g);
+    const auto& b = object_bounds[inst.mesh];
+    for (int c = 0; c < 8; ++c)
+      grow(inst.object.point_to_world(
+          Vec3(c & 1 ? b[1].x : b[0].x, c & 2 ? b[1].y : b[0].y, c & 4 ? b[1].z : b[0].z)));
   }
   rtcCommitScene(e.scene);
   if (rtcGetDeviceError(e.device) != RTC_ERROR_NONE)
     throw std::runtime_error("Embree: building the BVH failed: " + embree_error(e.device));
 
-  // One mesh light per mesh that has emissive triangles, constant or textured.
+  // One mesh light per drawn mesh (and per placement of an instanced one) with emissive
+  // triangles.
   mesh_area_light_.assign(meshes_.size(), -1);
-  std::vector<Vec3> registers(MaterialGraph::kMaxRegisters);  // for the textured estimates
-  for (size_t mi = 0; mi < meshes_.size(); ++mi) {
-    const StoredMesh& m = meshes_[mi];
-    Light area;
-    area.type = LightType::Mesh;
-    area.mesh = static_cast<uint32_t>(mi);
-    for (size_t t = 0; t < m.indices.size() / 3; ++t) {
-      const uint32_t mat = m.material_indices.empty() ? m.material : m.material_indices[t];
-      const Material& material = materials_[mat];
-      const bool textured = material.graph && !material.graph->emission_is_constant();
-      RGB le = material.emission;
-      if (textured) {
-        // The power estimate: the emission at the centroid, seen along the normal.
-        Hit centroid;
-        centroid.mesh = static_cast<uint32_t>(mi);
-        centroid.triangle = static_cast<uint32_t>(t);
-        centroid.b1 = centroid.b2 = 1.0f / 3.0f;
-        le = textured_emission(*this, centroid, surface_point(centroid).ng, registers.data());
-      } else if (le.is_black()) {
-        continue;
-      }
-      EmissiveTriangle tri;
-      tri.p0 = load3(m.positions, m.indices[3 * t]);
-      tri.e1 = load3(m.positions, m.indices[3 * t + 1]) - tri.p0;
-      tri.e2 = load3(m.positions, m.indices[3 * t + 2]) - tri.p0;
-      Vec3 n = cross(tri.e1, tri.e2);
-      tri.area = 0.5f * length(n);
-      if (!normalize_direction(n) || !(tri.area > 0.0f)) continue;  // degenerate: cannot emit
-      tri.normal = n;
-      tri.radiance = le;
-      tri.triangle = static_cast<uint32_t>(t);
-      tri.textured = textured;
-      area.total_area += tri.area;
-      area.cdf.push_back(area.total_area);
-      area.triangles.push_back(tri);
-    }
-    if (area.triangles.empty()) continue;
-    mesh_area_light_[mi] = static_cast<int>(lights_.size());
-    lights_.push_back(std::move(area));
-  }
+  for (size_t mi = 0; mi < meshes_.size(); ++mi)
+    if (!meshes_[mi].instanced) add_mesh_light(static_cast<uint32_t>(mi), kNotInstanced, &mesh_area_light_[mi]);
+  instance_area_light_.assign(instances_.size(), -1);
+  for (size_t ii = 0; ii < instances_.size(); ++ii)
+    add_mesh_light(instances_[ii].mesh, static_cast<uint32_t>(ii), &instance_area_light_[ii]);
   for (const Light& l : lights_)
     if (l.type == LightType::Point || l.type == LightType::Spot || l.type == LightType::Area) {
       const Vec3 p = l.position;
@@ -397,7 +515,13 @@ bool Scene::intersect(const Ray& ray, Hit* hit, bool camera_ray) const {
   rtcIntersect1(embree_->scene, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit->t = rh.ray.tfar;
-  hit->mesh = rh.hit.geomID;
+  if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+    hit->instance = rh.hit.instID[0] - static_cast<uint32_t>(meshes_.size());
+    hit->mesh = instances_[hit->instance].mesh;
+  } else {
+    hit->instance = kNotInstanced;
+    hit->mesh = rh.hit.geomID;
+  }
   hit->triangle = rh.hit.primID;
   hit->b1 = rh.hit.u;
   hit->b2 = rh.hit.v;
@@ -425,7 +549,11 @@ bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
 }
 
 SurfacePoint Scene::surface_point(const Hit& hit) const {
+  // Computed in the mesh's space (world, or an instanced mesh's object space), then moved to
+  // world space by the hit's placement: points and dp/du as points and vectors, normals by the
+  // inverse transpose (which keeps an instance's outside out even when it mirrors).
   const StoredMesh& m = meshes_[hit.mesh];
+  const ObjectTransform* placed = placement(hit);
   const uint32_t i0 = m.indices[3 * size_t(hit.triangle)];
   const uint32_t i1 = m.indices[3 * size_t(hit.triangle) + 1];
   const uint32_t i2 = m.indices[3 * size_t(hit.triangle) + 2];
@@ -435,11 +563,16 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
   sp.p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
   const Vec3 e1 = p1 - p0, e2 = p2 - p0;
   sp.ng = cross(e1, e2);
+  if (placed) {
+    sp.p = placed->point_to_world(sp.p);
+    sp.ng = placed->normal_to_world(sp.ng);
+  }
   if (!normalize_direction(sp.ng)) sp.ng = Vec3(0, 0, 1);
   sp.ns = sp.ng;
   if (!m.normals.empty()) {
     Vec3 n = load3(m.normals, i0) * b0 + load3(m.normals, i1) * hit.b1 +
              load3(m.normals, i2) * hit.b2;
+    if (placed) n = placed->normal_to_world(n);
     if (normalize_direction(n)) {
       sp.ns = n;
       // The geometric normal follows the side the shading normals give (pbrt's convention).
@@ -457,6 +590,7 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
     const float det = du1 * dv2 - dv1 * du2;
     if (std::fabs(det) > 1e-20f) {
       sp.tangent = (e1 * dv2 - e2 * dv1) / det;  // dp/du
+      if (placed) sp.tangent = placed->vector_to_world(sp.tangent);
       have_tangent = normalize_direction(sp.tangent);
     }
   } else {
@@ -499,19 +633,22 @@ bool Scene::tangent(const Hit& hit, int map, Vec3* tangent, float* sign) const {
 
 Vec3 Scene::smooth_normal(const Hit& hit) const {
   const StoredMesh& m = meshes_[hit.mesh];
+  const ObjectTransform* placed = placement(hit);
   const uint32_t* t = &m.indices[3 * size_t(hit.triangle)];
   if (m.normals.empty()) {
     Vec3 n = cross(load3(m.positions, t[1]) - load3(m.positions, t[0]),
                    load3(m.positions, t[2]) - load3(m.positions, t[0]));
+    if (placed) n = placed->normal_to_world(n);
     return normalize_direction(n) ? n : Vec3(0, 0, 1);
   }
   const float b0 = 1.0f - hit.b1 - hit.b2;
-  return load3(m.normals, t[0]) * b0 + load3(m.normals, t[1]) * hit.b1 +
-         load3(m.normals, t[2]) * hit.b2;
+  const Vec3 n = load3(m.normals, t[0]) * b0 + load3(m.normals, t[1]) * hit.b1 +
+                 load3(m.normals, t[2]) * hit.b2;
+  return placed ? placed->normal_to_world(n) : n;
 }
 
 Vec3 Scene::object_position(const Hit& hit, const Vec3& p) const {
-  return apply_affine(meshes_[hit.mesh].world_to_object, p);
+  return object_of(hit).point_to_object(p);
 }
 
 Vec3 Scene::generated(const Hit& hit, const Vec3& p) const {
@@ -522,9 +659,7 @@ Vec3 Scene::generated(const Hit& hit, const Vec3& p) const {
 }
 
 Vec3 Scene::normal_to_object(const Hit& hit, const Vec3& n) const {
-  const std::array<float, 9>& a = meshes_[hit.mesh].object_linear;  // Aᵀ n
-  return {a[0] * n.x + a[3] * n.y + a[6] * n.z, a[1] * n.x + a[4] * n.y + a[7] * n.z,
-          a[2] * n.x + a[5] * n.y + a[8] * n.z};
+  return object_of(hit).normal_to_object(n);
 }
 
 Vec3 Scene::radial_tangent(const Hit& hit, const Vec3& p) const {
@@ -535,13 +670,14 @@ Vec3 Scene::radial_tangent(const Hit& hit, const Vec3& p) const {
 }
 
 Vec3 Scene::normal_to_world(const Hit& hit, const Vec3& n) const {
-  const std::array<float, 12>& w = meshes_[hit.mesh].world_to_object;  // (A⁻¹)ᵀ n
-  return {w[0] * n.x + w[4] * n.y + w[8] * n.z, w[1] * n.x + w[5] * n.y + w[9] * n.z,
-          w[2] * n.x + w[6] * n.y + w[10] * n.z};
+  return object_of(hit).normal_to_world(n);
 }
 
-Hit Scene::offset_hit(const Hit& hit, const Vec3& dp) const {
+Hit Scene::offset_hit(const Hit& hit, const Vec3& world_dp) const {
   const StoredMesh& m = meshes_[hit.mesh];
+  const ObjectTransform* placed = placement(hit);
+  // Barycentrics do not change under an affine map: solved in the mesh's own space.
+  const Vec3 dp = placed ? placed->vector_to_object(world_dp) : world_dp;
   const uint32_t* t = &m.indices[3 * size_t(hit.triangle)];
   const Vec3 p0 = load3(m.positions, t[0]);
   const Vec3 e1 = load3(m.positions, t[1]) - p0, e2 = load3(m.positions, t[2]) - p0;
@@ -560,11 +696,16 @@ Hit Scene::offset_hit(const Hit& hit, const Vec3& dp) const {
 bool Scene::smooth_triangle(const Hit& hit, SmoothTriangle* tri) const {
   const StoredMesh& m = meshes_[hit.mesh];
   if (m.normals.empty()) return false;
+  const ObjectTransform* placed = placement(hit);
   for (int k = 0; k < 3; ++k) {
     const uint32_t i = m.indices[3 * size_t(hit.triangle) + k];
-    tri->v[k] = load3(m.positions, i);
+    tri->v[k] = world_vertex(m, hit, i);
     tri->n[k] = load3(m.normals, i);
     if (tri->n[k] == Vec3(0, 0, 0)) return false;  // broken normal: shaded flat
+    if (placed) {
+      tri->n[k] = placed->normal_to_world(tri->n[k]);
+      if (!normalize_direction(tri->n[k])) return false;
+    }
   }
   return true;
 }

@@ -444,8 +444,11 @@ uint32_t material_ref(const Reader& r, const json& j, const std::string& path,
   return it->second;
 }
 
-void read_mesh(const Reader& r, const json& j, const std::string& path,
-               const std::map<std::string, uint32_t>& materials, Scene& scene) {
+// A mesh of "meshes" (drawn where it is) or of "prototypes" (`instanced`: in its own object
+// space, drawn only by "instances"); returns its scene index.
+uint32_t read_mesh(const Reader& r, const json& j, const std::string& path,
+                   const std::map<std::string, uint32_t>& materials, Scene& scene,
+                   bool instanced = false) {
   r.object(j, path);
   Mesh mesh;
   uint32_t fixed = 0;
@@ -525,10 +528,52 @@ void read_mesh(const Reader& r, const json& j, const std::string& path,
     r.fail_message(path, "a mesh needs \"obj\", \"shape\" or \"positions\"");
   }
   mesh.material = fixed;
+  if (instanced && !mesh.object_to_world.empty())
+    r.fail_message(path + ".object_to_world",
+                   "a prototype is in its own object space; each instance's \"matrix\" places it");
   try {
-    scene.add_mesh(mesh.view());
+    return instanced ? scene.add_instanced_mesh(mesh.view()) : scene.add_mesh(mesh.view());
   } catch (const ParameterError& e) {
     r.fail_message(path, e.what());
+  }
+}
+
+// "instances": [{"prototype": name, "matrix": 3×4 or 4×4 rows (object → world, affine,
+// invertible)}, ...].
+void read_instances(const Reader& r, const json& list, const std::map<std::string, uint32_t>& prototypes,
+                    Scene& scene) {
+  if (!list.is_array()) r.fail("instances", "an array of {\"prototype\": name, \"matrix\": rows}", list);
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "instances[" + std::to_string(i) + "]";
+    const json& j = list[i];
+    r.object(j, path);
+    r.only_keys(j, path, {"prototype", "matrix"});
+    const std::string name = r.string(r.require(j, path, "prototype"), path + ".prototype");
+    const auto it = prototypes.find(name);
+    if (it == prototypes.end()) {
+      std::string known;
+      for (const auto& [k, v] : prototypes) known += (known.empty() ? "" : ", ") + k;
+      r.fail(path + ".prototype", "the name of a mesh in \"prototypes\" {" + known + "}", j["prototype"]);
+    }
+    const json& m = r.require(j, path, "matrix");
+    const std::string mp = path + ".matrix";
+    if (!m.is_array() || (m.size() != 3 && m.size() != 4))
+      r.fail(mp, "3 or 4 rows of 4 numbers (object to world)", m);
+    float rows[16];
+    for (size_t row = 0; row < m.size(); ++row) {
+      const std::string rp = mp + "[" + std::to_string(row) + "]";
+      if (!m[row].is_array() || m[row].size() != 4) r.fail(rp, "4 numbers", m[row]);
+      for (size_t c = 0; c < 4; ++c)
+        rows[4 * row + c] = static_cast<float>(r.number_in(m[row][c], rp + "[" + std::to_string(c) + "]",
+                                                           -1e9, 1e9, "[-1e9, 1e9]"));
+    }
+    if (m.size() == 4 && !(rows[12] == 0.0f && rows[13] == 0.0f && rows[14] == 0.0f && rows[15] == 1.0f))
+      r.fail(mp + "[3]", "[0, 0, 0, 1] (an affine matrix)", m[3]);
+    try {
+      scene.add_instance(it->second, rows);
+    } catch (const ParameterError& e) {
+      r.fail_message(mp, e.what());
+    }
   }
 }
 
@@ -669,7 +714,8 @@ LoadedScene parse_scene_json(const std::string& text, const std::string& name,
   }
   const Reader r(name, base_dir);
   if (!root.is_object()) r.fail("(root)", "an object", root);
-  r.only_keys(root, "", {"render", "camera", "world", "materials", "meshes", "lights"});
+  r.only_keys(root, "", {"render", "camera", "world", "materials", "meshes", "prototypes", "instances",
+                         "lights"});
 
   LoadedScene out;
   out.scene = std::make_unique<Scene>();
@@ -706,10 +752,30 @@ LoadedScene parse_scene_json(const std::string& text, const std::string& name,
     }
   }
 
-  const json& meshes = r.require(root, "", "meshes");
-  if (!meshes.is_array() || meshes.empty()) r.fail("meshes", "a non-empty array of meshes", meshes);
-  for (size_t i = 0; i < meshes.size(); ++i)
-    read_mesh(r, meshes[i], "meshes[" + std::to_string(i) + "]", materials, scene);
+  // Meshes drawn where they are, and prototypes drawn by instances: at least one of them.
+  if (!root.contains("instances")) {
+    const json& meshes = r.require(root, "", "meshes");
+    if (!meshes.is_array() || meshes.empty()) r.fail("meshes", "a non-empty array of meshes", meshes);
+  }
+  if (root.contains("meshes")) {
+    const json& meshes = root["meshes"];
+    if (!meshes.is_array()) r.fail("meshes", "an array of meshes", meshes);
+    for (size_t i = 0; i < meshes.size(); ++i)
+      read_mesh(r, meshes[i], "meshes[" + std::to_string(i) + "]", materials, scene);
+  }
+  std::map<std::string, uint32_t> prototypes;
+  if (root.contains("prototypes")) {
+    const json& protos = root["prototypes"];
+    if (!protos.is_object()) r.fail("prototypes", "an object of named meshes {\"name\": mesh}", protos);
+    for (auto it = protos.begin(); it != protos.end(); ++it)
+      prototypes[it.key()] = read_mesh(r, it.value(), "prototypes." + it.key(), materials, scene, true);
+  }
+  if (root.contains("instances")) {
+    const json& instances = root["instances"];
+    read_instances(r, instances, prototypes, scene);
+    if (scene.num_instances() == 0 && !root.contains("meshes"))
+      r.fail("instances", "a non-empty array of instances (or \"meshes\")", instances);
+  }
 
   if (root.contains("lights")) {
     const json& lights = root["lights"];

@@ -93,7 +93,7 @@ def test_meshes_and_instances(scene):
     plane = data["meshes"][names.index("plane")]
     assert cube["positions"].dtype == np.float32 and cube["positions"].shape == (8, 3)
     assert cube["triangles"].dtype == np.int32 and cube["triangles"].shape == (12, 3)
-    assert cube["normal_indices"].shape == (12, 3) and cube["uvs"] is None
+    assert cube["normal_indices"] is None and cube["uvs"] is None  # all flat: no normals
     assert plane["uvs"].shape == (4, 2) and plane["uvs"].dtype == np.float32
     assert plane["uv_indices"].shape == (2, 3)
     corner_uvs = plane["uvs"][plane["uv_indices"]]  # Blender's default UVs: u = x, v = y mapped to [0, 1]
@@ -107,14 +107,10 @@ def test_meshes_and_instances(scene):
     assert offsets == [pytest.approx((0, 0, 3)), pytest.approx((5, 0, 3))]
 
 
-def test_flat_faces_keep_face_normals_and_smooth_faces_vertex_normals(scene):
+def test_flat_meshes_leave_normals_to_the_triangles_and_smooth_faces_keep_vertex_normals(scene):
     data = _export()
     cube = next(m for m in data["meshes"] if m["name"] == "cube")
-    p = cube["positions"][cube["triangles"]]  # (T, 3 corners, 3)
-    face_normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-    face_normal /= np.linalg.norm(face_normal, axis=1, keepdims=True)
-    corner_normals = cube["normals"][cube["normal_indices"]]
-    np.testing.assert_allclose(corner_normals, np.repeat(face_normal[:, None], 3, axis=1), atol=1e-6)
+    assert cube["normals"] is None and cube["normal_indices"] is None
     plane = next(m for m in data["meshes"] if m["name"] == "plane")
     np.testing.assert_allclose(plane["normals"][plane["normal_indices"]].reshape(-1, 3),
                                [[0, 0, 1]] * 6, atol=1e-6)
@@ -150,6 +146,9 @@ def test_triangles_and_normals_match_blenders_own_for_every_shading_case():
             data = export.mesh_arrays(mesh)
             vertices, normals = _blender_triangles(mesh)
             np.testing.assert_array_equal(data["triangles"], vertices, err_msg=f"{name} {case}")
+            if case == "flat":  # each triangle's own normal, as Cycles shades flat faces
+                assert data["normals"] is None and data["normal_indices"] is None
+                continue
             np.testing.assert_allclose(_corner_normals(data), normals, atol=1e-6, err_msg=f"{name} {case}")
 
 

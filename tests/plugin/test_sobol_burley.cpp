@@ -133,6 +133,28 @@ TEST(SobolBurley, EstimatesAreUnbiasedAndLessNoisyThanIndependentSamples) {
   }
 }
 
+TEST(SobolBurley, SampleEqualsItsDefinitionBitForBit) {
+  // sample() runs in the bit-reversed domain with reversed tables; it must give exactly the
+  // points of the plain definition (shuffle the index, take the Sobol coordinate, scramble).
+  uint32_t seed = 12345u, index = 0u;
+  for (int k = 0; k < 20000; ++k, seed = sobol::hash(seed + 1u)) {
+    index = k < 10000 ? uint32_t(k) : sobol::hash(index ^ seed);  // small and full 32-bit indices
+    const uint32_t shuffled = sobol::owen_scramble(index, sobol::hash(seed ^ sobol::kSalt[sobol::kDimensions]));
+    const auto got = sobol::sample<4>(index, seed);
+    for (int d = 0; d < sobol::kDimensions; ++d) {
+      const float expected = sobol::to_unit_float(
+          sobol::owen_scramble(sobol::sobol(shuffled, d), sobol::hash(seed ^ sobol::kSalt[d])));
+      ASSERT_EQ(got[size_t(d)], expected) << "dim " << d << " index " << index << " seed " << seed;
+    }
+  }
+}
+
+TEST(SobolBurley, ReverseBitsReverses) {
+  for (uint32_t bit = 0; bit < 32; ++bit)
+    EXPECT_EQ(sobol::reverse_bits(1u << bit), 1u << (31 - bit)) << bit;
+  EXPECT_EQ(sobol::reverse_bits(0x12345678u), 0x1e6a2c48u);
+}
+
 TEST(PathSampler, DimensionSetsAreDecorrelated) {
   // E[u v] = 1/4 for independent uniforms; the same seed reused for two purposes would give
   // E[u^2] = 1/3. Taken over many pixels and samples.

@@ -201,6 +201,52 @@ def test_instances_match_world_space_mesh(mirror):
     np.testing.assert_allclose(instanced, reference, rtol=1e-3, atol=1e-5)
 
 
+def _placed(world, m):
+    """The world-space mesh `world` as the object-space mesh that `m` places there."""
+    inv = np.linalg.inv(m)
+    local = dict(world)
+    local["positions"] = (world["positions"] @ inv[:3, :3].T + inv[:3, 3]).astype(np.float32)
+    local["normals"] = (world["normals"] @ m[:3, :3]).astype(np.float32)  # n_local ∝ Mᵀ n_world
+    return local
+
+
+@pytest.mark.parametrize("mirror", [False, True], ids=["rotate-scale", "mirror"])
+def test_shared_instances_match_world_space_meshes(mirror):
+    """A mesh placed twice is stored once and drawn by Embree instances: the image equals the
+    one of the two placements given as world-space meshes."""
+    material = {"name": "m", "model": "microfacet", "params": {"alpha_x": 0.3, "alpha_y": 0.3}}
+    world = sphere_mesh()
+    matrices = []
+    for shift, angle in ((-0.9, 0.7), (0.9, -0.4)):
+        m = np.eye(4)
+        m[:3, :3] = 0.6 * rotation([1, 2, 3], angle) @ np.diag([-1.0 if mirror else 1.0, 1, 1])
+        m[:3, 3] = [shift, -0.2, 0.1]
+        matrices.append(m)
+    # The reference: each placement moved into world space by numpy, drawn as its own mesh.
+    moved = []
+    for m in matrices:
+        w = dict(world)
+        w["positions"] = (world["positions"] @ m[:3, :3].T + m[:3, 3]).astype(np.float32)
+        normals = world["normals"] @ np.linalg.inv(m[:3, :3])
+        w["normals"] = (normals / np.linalg.norm(normals, axis=1, keepdims=True)).astype(np.float32)
+        if mirror:  # the winding follows the mirror, so that the front stays the front
+            for key in ("triangles", "normal_indices", "uv_indices"):
+                w[key] = w[key][:, [0, 2, 1]]
+        moved.append(w)
+    reference_scene = scene_dict(material)
+    reference_scene["meshes"] = moved
+    reference = bxdf.render(reference_scene, DIRECT)
+    assert reference[..., :3].sum() > 0
+
+    scene = scene_dict(material, world)
+    scene["instance_mesh"] = np.array([0, 0], dtype=np.int32)
+    scene["instance_matrix"] = np.stack(matrices).astype(np.float32)
+    instanced, stats = bxdf.render(scene, DIRECT, return_stats=True)
+    assert stats["instances"] == 2 and stats["stored_triangles"] == len(world["triangles"])
+    assert stats["triangles"] == 2 * len(world["triangles"])
+    np.testing.assert_allclose(instanced, reference, rtol=1e-3, atol=1e-4)
+
+
 def test_instances_draw_a_mesh_several_times_and_only_instances():
     material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.7}}
     scene = scene_dict(material)
@@ -399,6 +445,11 @@ BAD_SCENES = [
      r"scene\['meshes'\]\[0\]\['triangles'\]: has dtype float32; expected an integer array"),
     ("triangles range", _set(["meshes", 0, "triangles", 3, 1], 10_000),
      r"scene\['meshes'\]\[0\]\['triangles'\]: index 10000 out of range \[0, 266\) \(row 3\)"),
+    # Indices are read as int32 (Blender's type, used in place); wider ones must fit, not wrap.
+    ("triangles past 32 bits", _set(["meshes", 0, "triangles"], np.where(np.arange(3) == 1, 2**40 + 1, uv_sphere()[1])),
+     r"scene\['meshes'\]\[0\]\['triangles'\]: has index 1099511627777, outside the 32-bit range"),
+    ("uint64 indices past 32 bits", _set(["meshes", 0, "uv_indices"], np.full((N_TRI, 3), 2**63, np.uint64)),
+     r"scene\['meshes'\]\[0\]\['uv_indices'\]: has index 9223372036854775808, outside the 32-bit range"),
     ("normal index range", _set(["meshes", 0, "normal_indices", 7, 2], 266),
      r"scene\['meshes'\]\[0\]\['normal_indices'\]: index 266 out of range \[0, 266\) \(row 7\)"),
     ("normal_indices rows", _set(["meshes", 0, "normal_indices"], np.zeros((3, 3), np.int32)),
@@ -458,6 +509,21 @@ def test_bad_instances_name_the_field():
     projective[1, 3, 2] = 0.5
     scene["instance_matrix"] = projective
     with pytest.raises(ValueError, match=r"scene\['instance_matrix'\]\[1\]: has last row"):
+        bxdf.render(scene, DIRECT)
+    far = np.stack([np.eye(4)] * 2)
+    far[1, 1, 3] = 1e12  # past the renderer's coordinate range
+    scene["instance_matrix"] = far
+    with pytest.raises(ValueError, match=r"scene\['instance_matrix'\]\[1\]: has 1000000000000\.0; "
+                                         r"expected entries in \[-1e9, 1e9\]"):
+        bxdf.render(scene, DIRECT)
+    nan = np.stack([np.eye(4)] * 2)
+    nan[0, 2, 2] = np.nan
+    scene["instance_matrix"] = nan
+    with pytest.raises(ValueError, match=r"scene\['instance_matrix'\]\[0\]: has nan; expected a finite 4x4 matrix"):
+        bxdf.render(scene, DIRECT)
+    scene["instance_mesh"] = np.array([0.0, 0.0])
+    scene["instance_matrix"] = np.stack([np.eye(4)] * 2)
+    with pytest.raises(ValueError, match=r"scene\['instance_mesh'\]: has dtype float64; expected an integer array"):
         bxdf.render(scene, DIRECT)
 
 

@@ -51,10 +51,33 @@ constexpr std::array<ByteTables, kDimensions> make_byte_tables() {
 
 constexpr std::array<ByteTables, kDimensions> kByteTables = make_byte_tables();
 
+constexpr uint32_t reverse_constexpr(uint32_t x, int bits) {
+  uint32_t r = 0;
+  for (int i = 0; i < bits; ++i) r |= ((x >> i) & 1u) << (bits - 1 - i);
+  return r;
+}
+
+// Byte j of reverse_bits(index) is byte 3 - j of index, its bits reversed.
+constexpr std::array<ByteTables, kDimensions> make_reversed_byte_tables() {
+  std::array<ByteTables, kDimensions> tables{};
+  for (std::size_t d = 0; d < kDimensions; ++d)
+    for (std::size_t byte = 0; byte < 4; ++byte)
+      for (uint32_t value = 0; value < 256; ++value)
+        tables[d][byte][value] =
+            reverse_constexpr(kByteTables[d][3 - byte][reverse_constexpr(value, 8)], 32);
+  return tables;
+}
+
+constexpr std::array<ByteTables, kDimensions> kReversedByteTables = make_reversed_byte_tables();
+
 }  // namespace
 
 const std::array<uint32_t, 32>& directions(int d) { return kDirections[static_cast<std::size_t>(d)]; }
 
 const ByteTables& byte_tables(int d) { return kByteTables[static_cast<std::size_t>(d)]; }
+
+const ByteTables& reversed_byte_tables(int d) {
+  return kReversedByteTables[static_cast<std::size_t>(d)];
+}
 
 }  // namespace bxdf::render::sobol

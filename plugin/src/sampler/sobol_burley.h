@@ -21,11 +21,11 @@ constexpr int kDimensions = 4;
 const std::array<uint32_t, 32>& directions(int d);
 
 inline uint32_t reverse_bits(uint32_t x) {
+  // Bits within each byte, then the bytes with one byte swap (one instruction on x86).
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-  return (x >> 16) | (x << 16);
+  return __builtin_bswap32(x);
 }
 
 // An integer hash with good avalanche (Wellons' lowbias32): turns structured seeds (pixel
@@ -63,6 +63,12 @@ inline uint32_t owen_scramble(uint32_t x, uint32_t seed) {
 using ByteTables = std::array<std::array<uint32_t, 256>, 4>;
 const ByteTables& byte_tables(int d);
 
+// The same products in the bit-reversed domain: table j maps byte j of reverse_bits(index) to
+// the bit-reversed contribution of that byte, so reverse_bits(sobol(index, d)) =
+// XOR over j of table[j][byte j of reverse_bits(index)]. sample() works there, where Owen
+// scrambling does, and so skips two bit reversals per coordinate.
+const ByteTables& reversed_byte_tables(int d);
+
 // Unscrambled Sobol coordinate `d` (< kDimensions) of point `index`, as a 32-bit fraction.
 inline uint32_t sobol(uint32_t index, int d) {
   if (d == 0) return reverse_bits(index);  // van der Corput
@@ -74,19 +80,35 @@ inline uint32_t sobol(uint32_t index, int d) {
 // [0, 1): the top 24 bits, so that the float is never rounded up to 1.
 inline float to_unit_float(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
 
+// Per-coordinate seeds of sample() (entry kDimensions: the index shuffle): arbitrary distinct
+// constants mixed with the seed through the hash.
+inline constexpr uint32_t kSalt[kDimensions + 1] = {0x9e78e391u, 0x67c33241u, 0x78c395c5u,
+                                                    0x39468210u, 0xcaa726acu};
+
 // Coordinates 0..N-1 of sample `index` of the sequence seeded by `seed` (N <= kDimensions).
 // Different seeds give statistically independent sequences.
 template <int N>
 std::array<float, N> sample(uint32_t index, uint32_t seed) {
   static_assert(N >= 1 && N <= kDimensions, "Sobol-Burley draws up to kDimensions coordinates");
-  // Per-coordinate seeds: arbitrary distinct odd constants mixed through the hash.
-  constexpr uint32_t kSalt[kDimensions + 1] = {0x9e78e391u, 0x67c33241u, 0x78c395c5u,
-                                               0x39468210u, 0xcaa726acu};
-  const uint32_t shuffled = owen_scramble(index, hash(seed ^ kSalt[kDimensions]));
+  // Equal, bit for bit, to
+  //   shuffled = owen_scramble(index, hash(seed ^ kSalt[kDimensions]));
+  //   out[d] = to_unit_float(owen_scramble(sobol(shuffled, d), hash(seed ^ kSalt[d])));
+  // computed in the bit-reversed domain (reversed_shuffled = reverse_bits(shuffled)).
+  const uint32_t reversed_shuffled =
+      owen_scramble_reversed(reverse_bits(index), hash(seed ^ kSalt[kDimensions]));
   std::array<float, N> out{};
-  for (int d = 0; d < N; ++d)
+  for (int d = 0; d < N; ++d) {
+    uint32_t reversed;  // reverse_bits(sobol(shuffled, d))
+    if (d == 0) {
+      reversed = reverse_bits(reversed_shuffled);  // van der Corput is the reversal itself
+    } else {
+      const ByteTables& t = reversed_byte_tables(d);
+      reversed = t[0][reversed_shuffled & 0xffu] ^ t[1][(reversed_shuffled >> 8) & 0xffu] ^
+                 t[2][(reversed_shuffled >> 16) & 0xffu] ^ t[3][reversed_shuffled >> 24];
+    }
     out[static_cast<std::size_t>(d)] =
-        to_unit_float(owen_scramble(sobol(shuffled, d), hash(seed ^ kSalt[d])));
+        to_unit_float(reverse_bits(owen_scramble_reversed(reversed, hash(seed ^ kSalt[d]))));
+  }
   return out;
 }
 

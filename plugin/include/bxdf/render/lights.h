@@ -66,6 +66,10 @@ struct Light {
   std::vector<float> cdf;
   float total_area = 0.0f;
   uint32_t mesh = 0;  // mesh: its index in the scene
+  // Mesh: which placement of an instanced mesh (Hit::instance; ~0u when not instanced), and
+  // whether that placement mirrors it (its triangles' vertices 1 and 2 were swapped).
+  uint32_t instance = ~0u;
+  bool mirrored = false;
 
   bool is_delta() const {
     return ((type == LightType::Point || type == LightType::Spot) && radius == 0.0f) ||

@@ -15,16 +15,21 @@
 #include "bxdf/render/lights.h"
 #include "bxdf/render/material.h"
 #include "bxdf/render/mesh.h"
+#include "bxdf/render/object_transform.h"
 #include "bxdf/render/ray.h"
 #include "bxdf/render/shadow_terminator.h"
 
 namespace bxdf::render {
+
+// Hit::instance of a mesh drawn where it was declared (add_mesh).
+inline constexpr uint32_t kNotInstanced = 0xffffffffu;
 
 // What a ray hit, before shading.
 struct Hit {
   float t = 0.0f;
   uint32_t mesh = 0, triangle = 0;
   float b1 = 0.0f, b2 = 0.0f;  // barycentrics of vertices 1 and 2
+  uint32_t instance = kNotInstanced;  // which placement of an instanced mesh, or kNotInstanced
 };
 
 // The shading point built from a hit.
@@ -50,6 +55,19 @@ class Scene {
   // Copies the mesh; returns its index. Throws ParameterError naming the array and the
   // offending entry (index out of range, NaN position, unknown material...).
   uint32_t add_mesh(const MeshView& mesh);
+  // A mesh declared once in its own object space and drawn only where add_instance places it
+  // (one level: an Embree instance of a scene of its own, so N placements cost one mesh and
+  // one BVH). Its object_to_world must be null; visibility and terminator offsets apply to
+  // every placement. Returns its index (a mesh index, as add_mesh's).
+  uint32_t add_instanced_mesh(const MeshView& mesh);
+  // The same, taking the mesh's arrays over instead of copying them (the mesh is left empty or
+  // partly emptied): for callers that built a mesh only to hand it over, at 10M triangles a
+  // copy is hundreds of megabytes.
+  uint32_t add_mesh(Mesh&& mesh);
+  uint32_t add_instanced_mesh(Mesh&& mesh);
+  // Places an instanced mesh with a 3×4 row-major object → world matrix (finite, invertible);
+  // returns the instance's index. Throws ParameterError naming the mesh or the matrix.
+  uint32_t add_instance(uint32_t mesh, const float* object_to_world);
   // Point, spot, sun and area lights (mesh lights come from emissive materials at commit).
   void add_light(Light light);
   // A constant world, or one with an environment image (see environment.h).
@@ -61,7 +79,9 @@ class Scene {
 
   bool committed() const { return committed_; }
   size_t num_meshes() const { return meshes_.size(); }
-  size_t num_triangles() const;
+  size_t num_triangles() const;  // stored: an instanced mesh counts once
+  size_t num_instances() const { return instances_.size(); }
+  size_t num_rendered_triangles() const;  // as drawn: an instanced mesh once per placement
   const std::vector<Material>& materials() const { return materials_; }
   const std::vector<Light>& lights() const { return lights_; }
   const Environment& world() const { return world_; }
@@ -88,12 +108,9 @@ class Scene {
   // Interpolated vertex normal, unnormalised (the geometric normal on a flat mesh).
   Vec3 smooth_normal(const Hit& hit) const;
   // Normals between world and object space (Aᵀ n and A⁻ᵀ n for the object matrix A; not
-  // normalised).
+  // normalised). The object is the instance's for a hit on an instanced mesh.
   Vec3 normal_to_object(const Hit& hit, const Vec3& n) const;
   Vec3 normal_to_world(const Hit& hit, const Vec3& n) const;
-  // True when the mesh's object matrix neither rotates nor scales (both maps above are then
-  // the identity, exactly), so per-hit code may skip them.
-  bool normals_in_world_space(const Hit& hit) const { return meshes_[hit.mesh].linear_identity; }
   Vec3 object_position(const Hit& hit, const Vec3& p) const;
   Vec3 generated(const Hit& hit, const Vec3& p) const;  // object position in the texture space
   // Cycles' default tangent: radial about the object's Z axis, in world space, not normalised.
@@ -111,8 +128,11 @@ class Scene {
   // to the (η_i/η_t)² radiance scaling of refraction (pbrt's etaScale).
   float relative_eta(uint32_t material) const { return material_eta_[material]; }
   bool transmissive(uint32_t material) const { return material_eta_[material] != 0.0f; }
-  // Index into lights() of the area light made from a mesh, or -1.
-  int area_light_of_mesh(uint32_t mesh) const { return mesh_area_light_[mesh]; }
+  // Index into lights() of the area light made from the hit mesh (or the hit instance), or -1.
+  int area_light_of(const Hit& hit) const {
+    return hit.instance == kNotInstanced ? mesh_area_light_[hit.mesh]
+                                         : instance_area_light_[hit.instance];
+  }
   // The hit triangle's vertices and vertex normals; false when the mesh is flat-shaded.
   bool smooth_triangle(const Hit& hit, SmoothTriangle* tri) const;
   const TerminatorOffsets& terminator(uint32_t mesh) const { return meshes_[mesh].terminator; }
@@ -122,25 +142,46 @@ class Scene {
 
  private:
   struct StoredMesh {
+    // positions carry one float past the last vertex: Embree reads vertices 16 bytes at a
+    // time from this very buffer (shared, not copied).
     std::vector<float> positions, normals, uvs;
+    size_t num_vertices = 0;
     std::vector<uint32_t> indices, material_indices;
     uint32_t material = 0;
     std::vector<std::vector<float>> uv_maps, tangents;  // per corner
-    std::array<float, 12> world_to_object{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-    std::array<float, 9> object_linear{1, 0, 0, 0, 1, 0, 0, 0, 1};  // object → world, 3×3
-    bool linear_identity = true;  // object_linear is the identity: normals need no transform
+    // World space; or, for an instanced mesh, object space (and `object` the identity).
+    ObjectTransform object;
+    bool instanced = false;
     Vec3 texspace_location, texspace_inv_size{1, 1, 1};  // generated = (p − loc)·inv/2 + ½
     MeshVisibility visibility;
     TerminatorOffsets terminator;
   };
+  struct StoredInstance {
+    uint32_t mesh = 0;
+    ObjectTransform object;
+  };
   struct EmbreeState;
   static void add_graph_attributes(const MeshView& mesh, const std::string& who, StoredMesh& s);
+  uint32_t store_mesh(const MeshView& mesh, bool instanced, Mesh* owned);
+  // The placement a hit's mesh-space data moves to world space by: null for meshes stored in
+  // world space.
+  const ObjectTransform* placement(const Hit& hit) const {
+    return hit.instance == kNotInstanced ? nullptr : &instances_[hit.instance].object;
+  }
+  // Object space of the hit (an instance's, or the mesh's own).
+  const ObjectTransform& object_of(const Hit& hit) const {
+    return hit.instance == kNotInstanced ? meshes_[hit.mesh].object : instances_[hit.instance].object;
+  }
+  Vec3 world_vertex(const StoredMesh& m, const Hit& hit, uint32_t vertex) const;
+  // The mesh light of a mesh drawn as itself (instance kNotInstanced) or of one placement.
+  void add_mesh_light(uint32_t mesh, uint32_t instance, int* light_index);
 
   std::vector<Material> materials_;
   std::vector<float> material_eta_;  // 0 = no transmission; else η_t/η_i (1 if unknown)
   std::vector<StoredMesh> meshes_;
+  std::vector<StoredInstance> instances_;
   std::vector<Light> lights_;
-  std::vector<int> mesh_area_light_;
+  std::vector<int> mesh_area_light_, instance_area_light_;
   std::vector<uint32_t> hittable_lights_, wide_suns_;
   Environment world_;
   LightSampler light_sampler_;

@@ -1,5 +1,6 @@
 // JSON scene files for the bxdf-render CLI: meshes (OBJ files, inline arrays or generated
-// shapes), materials (registry models, alone or combined, optionally emissive), lights,
+// shapes; "prototypes" drawn only where "instances" place them), materials (registry models,
+// alone or combined, optionally emissive), lights,
 // world, camera and render settings. Errors name the file, the JSON path of the field and what
 // was expected.
 #pragma once
