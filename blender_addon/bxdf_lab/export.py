@@ -275,6 +275,13 @@ def export_scene(depsgraph):
             instance_mesh.append(mesh_index[key])
             instance_matrix.append(_matrix(inst.matrix_world))
 
+    # The original scene's settings: a Python-defined property edit (Cycles' own) does not
+    # always reach the evaluated copy before the next depsgraph update.
+    original = depsgraph.scene
+    if original.render.film_transparent and getattr(getattr(original, "cycles", None),
+                                                    "film_transparent_glass", False):
+        warnings.append("Film: Transparent Glass is not supported; glass seen against the "
+                        "background stays opaque in the alpha")
     data = {
         "meshes": meshes,
         "instance_mesh": np.asarray(instance_mesh, dtype=np.int32),

@@ -206,6 +206,14 @@ def test_an_unsupported_world_texture_becomes_the_socket_default_with_a_warning(
     assert "world 'world'" in data["warnings"][0] and sky.name in data["warnings"][0]
 
 
+def test_transparent_glass_film_is_named_as_unsupported(scene):
+    scene.render.film_transparent = True
+    assert _export()["warnings"] == []
+    scene.cycles.film_transparent_glass = True
+    warnings = _export()["warnings"]
+    assert len(warnings) == 1 and "Transparent Glass" in warnings[0]
+
+
 def test_a_broken_material_is_refused_naming_it(scene):
     bpy.data.materials["blue"].bxdf_lab.lambertian.reflectance = (0.5, float("nan"), 0.5)
     with pytest.raises(ValueError, match="blue.*reflectance"):
