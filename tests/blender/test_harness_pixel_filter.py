@@ -18,6 +18,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 if ROOT not in sys.path:
     sys.path.insert(0, ROOT)  # the harness package `compare` lives at the repository root
 
+import pairing_scene  # noqa: E402
 from bxdf_lab import api, engine  # noqa: E402
 from compare import engine_setup  # noqa: E402
 from compare.scene_spec import Camera, SceneSpec  # noqa: E402
@@ -44,15 +45,9 @@ def _edge_scene():
     sun = bpy.data.lights.new("sun", "SUN")
     sun.energy, sun.angle = math.pi, 0.0   # radiance 1 off a white Lambertian facing it
     scene.collection.objects.link(bpy.data.objects.new("sun", sun))
-    cam = bpy.data.objects.new("cam", bpy.data.cameras.new("cam"))
-    cam.data.type, cam.data.ortho_scale = "ORTHO", SIZE
-    cam.location = (0.0, 0.0, 10.0)        # looking down -z, image x = +x, image up = +y
-    scene.collection.objects.link(cam)
-    scene.camera = cam
-    world = bpy.data.worlds.new("world")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
-    scene.world = world
+    # Looking down -z: image x = +x, image up = +y.
+    pairing_scene.add_camera(scene, (0.0, 0.0, 10.0), ortho_scale=SIZE)
+    pairing_scene.uniform_world(scene)
     scene.render.resolution_x = scene.render.resolution_y = SIZE
     scene.render.resolution_percentage = 100
     spec = SceneSpec(name="edge", description="a lit plane ending by a row of pixel centres",

@@ -9,6 +9,7 @@ import bpy
 import numpy as np
 from mathutils import Vector
 
+import pairing_scene
 from bxdf_lab import api, engine, export, renderer
 
 SIZE = 32
@@ -104,42 +105,15 @@ def test_shared_geometry_is_exported_once_and_stored_once(bxdf):
 
 def _scene(samples):
     scene = bpy.context.scene
-    cam = bpy.data.objects.new("cam", bpy.data.cameras.new("cam"))
-    cam.location = (0, -7, 4)
-    cam.rotation_euler = Vector(np.subtract((0, 0, 0.3), cam.location)).to_track_quat("-Z", "Y").to_euler()
-    scene.collection.objects.link(cam)
-    scene.camera = cam
-    world = bpy.data.worlds.new("world")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.05, 0.05, 0.05, 1)
-    scene.world = world
-    r = scene.render
-    r.resolution_x = r.resolution_y = SIZE
-    r.resolution_percentage = 100
-    r.image_settings.file_format, r.image_settings.color_depth = "OPEN_EXR", "32"
-    scene.view_settings.view_transform = "Standard"
-    s = scene.bxdf_lab_render
-    s.samples, s.max_bounces, s.pixel_filter, s.seed = samples, 2, "PIXEL_CENTER", 5
-    c = scene.cycles
-    c.samples, c.max_bounces, c.use_denoising, c.use_adaptive_sampling = samples, 2, False, False
-    c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = 2
-    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
-    c.light_sampling_threshold = 0.0
-    c.pixel_filter_type, c.filter_width = "GAUSSIAN", 0.01
+    pairing_scene.add_camera(scene, (0, -7, 4), (0, 0, 0.3))
+    pairing_scene.uniform_world(scene, (0.05, 0.05, 0.05))
+    pairing_scene.exr_output(scene, SIZE)
+    pairing_scene.exact_pairing_settings(scene, samples, 2, seed=5)
     return scene
 
 
 def _render(scene, engine_id, path):
-    scene.render.engine = engine_id
-    scene.render.filepath = str(path)
-    bpy.ops.render.render(write_still=True)
-    if engine_id == "BXDF_LAB":
-        assert engine.last_error == ""
-    image = bpy.data.images.load(str(path))
-    pixels = np.empty(image.size[0] * image.size[1] * 4, dtype=np.float32)
-    image.pixels.foreach_get(pixels)
-    bpy.data.images.remove(image)
-    return pixels.reshape(SIZE, SIZE, 4)[..., :3]
+    return pairing_scene.render_rgba(scene, engine_id, path)[..., :3]
 
 
 def test_linked_duplicates_render_like_cycles(tmp_path):

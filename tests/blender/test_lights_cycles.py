@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from mathutils import Vector
 
+import pairing_scene
 from bxdf_lab import api, engine, export
 
 SIZE = 32
@@ -44,45 +45,15 @@ def _plane(material, size=20.0, z=0.0):
 
 def _scene(samples, bounces=0, camera=(0, -6, 3), target=(0, 0, 0.5), lens=50.0):
     scene = bpy.context.scene
-    cam = bpy.data.objects.new("cam", bpy.data.cameras.new("cam"))
-    cam.data.lens = lens
-    cam.location = camera
-    direction = np.subtract(target, camera)
-    cam.rotation_euler = Vector(direction).to_track_quat("-Z", "Y").to_euler()
-    scene.collection.objects.link(cam)
-    scene.camera = cam
-    world = bpy.data.worlds.new("world")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
-    scene.world = world
-    r = scene.render
-    r.resolution_x = r.resolution_y = SIZE
-    r.resolution_percentage = 100
-    r.image_settings.file_format, r.image_settings.color_depth = "OPEN_EXR", "32"
-    scene.view_settings.view_transform = "Standard"
-    settings = scene.bxdf_lab_render
-    settings.samples, settings.max_bounces, settings.pixel_filter, settings.seed = samples, bounces, "PIXEL_CENTER", 3
-    c = scene.cycles
-    c.samples, c.max_bounces, c.use_denoising, c.use_adaptive_sampling = samples, bounces, False, False
-    c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = bounces
-    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
-    c.light_sampling_threshold = 0.0
-    c.pixel_filter_type, c.filter_width = "GAUSSIAN", 0.01  # pixel centres, as PIXEL_CENTER
+    pairing_scene.add_camera(scene, camera, target, lens)
+    pairing_scene.uniform_world(scene)
+    pairing_scene.exr_output(scene, SIZE)
+    pairing_scene.exact_pairing_settings(scene, samples, bounces, seed=3)
     return scene
 
 
 def _render(scene, engine_id, path):
-    scene.render.engine = engine_id
-    scene.render.filepath = str(path)
-    bpy.ops.render.render(write_still=True)
-    if engine_id == "BXDF_LAB":
-        assert engine.last_error == ""
-    image = bpy.data.images.load(str(path))
-    width, height = image.size
-    pixels = np.empty(width * height * 4, dtype=np.float32)
-    image.pixels.foreach_get(pixels)
-    bpy.data.images.remove(image)
-    return pixels.reshape(height, width, 4)
+    return pairing_scene.render_rgba(scene, engine_id, path)
 
 
 def _both(scene, tmp_path):

@@ -6,6 +6,8 @@ the test would see a wrong filter."""
 import bpy
 import numpy as np
 
+import pairing_scene
+
 WIDTH, HEIGHT, SAMPLES = 16, 16, 4096
 
 
@@ -23,19 +25,10 @@ def _edge_scene():
     material.node_tree.links.new(emission.outputs["Emission"],
                                  nodes["Material Output"].inputs["Surface"])
     plane.data.materials.append(material)
-    cam = bpy.data.objects.new("cam", bpy.data.cameras.new("cam"))
-    cam.data.type, cam.data.ortho_scale = "ORTHO", 4.0  # 4 units over 16 px: 0.25 per pixel
-    cam.location = (0.0, 0.0, 5.0)
-    scene.collection.objects.link(cam)
-    scene.camera = cam
-    world = bpy.data.worlds.new("world")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
-    scene.world = world
-    r = scene.render
-    r.resolution_x, r.resolution_y, r.resolution_percentage = WIDTH, HEIGHT, 100
-    r.image_settings.file_format, r.image_settings.color_depth = "OPEN_EXR", "32"
-    scene.view_settings.view_transform = "Standard"
+    # Looking down -Z, 4 units over 16 px: 0.25 per pixel.
+    pairing_scene.add_camera(scene, (0.0, 0.0, 5.0), ortho_scale=4.0)
+    pairing_scene.uniform_world(scene)
+    pairing_scene.exr_output(scene, WIDTH, HEIGHT)
     scene.bxdf_lab_render.samples, scene.bxdf_lab_render.max_bounces = SAMPLES, 0
     c = scene.cycles
     c.samples, c.max_bounces, c.use_denoising, c.use_adaptive_sampling = SAMPLES, 0, False, False
@@ -44,14 +37,7 @@ def _edge_scene():
 
 def _profile(scene, engine_id, path):
     """Mean over rows of each column, and its standard error."""
-    scene.render.engine = engine_id
-    scene.render.filepath = str(path)
-    bpy.ops.render.render(write_still=True)
-    image = bpy.data.images.load(str(path))
-    pixels = np.empty(WIDTH * HEIGHT * 4, dtype=np.float32)
-    image.pixels.foreach_get(pixels)
-    bpy.data.images.remove(image)
-    red = pixels.reshape(HEIGHT, WIDTH, 4)[..., 0].astype(np.float64)
+    red = pairing_scene.render_rgba(scene, engine_id, path)[..., 0].astype(np.float64)
     mean = red.mean(axis=0)
     # Each sample is 0 or 1: the binomial error of the column's mean over rows × samples.
     error = np.sqrt(np.clip(mean * (1 - mean), 0, None) / (HEIGHT * SAMPLES)) + 1e-4
