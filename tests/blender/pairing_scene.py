@@ -7,7 +7,16 @@ import bpy
 import numpy as np
 from mathutils import Vector
 
-from bxdf_lab import engine
+from bxdf_lab import api, engine
+
+
+def lambertian_material(name, reflectance=0.8):
+    """A Lambertian BxDF Lab material with its exact Cycles set-up (a Diffuse BSDF)."""
+    material = bpy.data.materials.new(name)
+    api.assign(material, "lambertian", reflectance=(reflectance,) * 3)
+    with bpy.context.temp_override(material=material):
+        assert bpy.ops.bxdf_lab.set_up_cycles() == {"FINISHED"}
+    return material
 
 
 def add_camera(scene, location, target=(0.0, 0.0, 0.0), lens=50.0, ortho_scale=None):

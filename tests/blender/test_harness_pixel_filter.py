@@ -19,7 +19,7 @@ if ROOT not in sys.path:
     sys.path.insert(0, ROOT)  # the harness package `compare` lives at the repository root
 
 import pairing_scene  # noqa: E402
-from bxdf_lab import api, engine  # noqa: E402
+from bxdf_lab import engine  # noqa: E402
 from compare import engine_setup  # noqa: E402
 from compare.scene_spec import Camera, SceneSpec  # noqa: E402
 
@@ -31,10 +31,7 @@ SAMPLES = 256
 
 def _edge_scene():
     scene = bpy.context.scene
-    material = bpy.data.materials.new("white")
-    api.assign(material, "lambertian", reflectance=(1.0, 1.0, 1.0))
-    with bpy.context.temp_override(material=material):
-        assert bpy.ops.bxdf_lab.set_up_cycles() == {"FINISHED"}
+    material = pairing_scene.lambertian_material("white", 1.0)
     # Row r's centres are at y = SIZE/2 - (r + 0.5) (image rows run down, +y up the image).
     edge_y = SIZE / 2 - (EDGE_ROW + 0.5) + EDGE_OFFSET
     mesh = bpy.data.meshes.new("plane")

@@ -10,17 +10,12 @@ import numpy as np
 from mathutils import Vector
 
 import pairing_scene
-from bxdf_lab import api, engine, export, renderer
+from bxdf_lab import engine, export, renderer
 
 SIZE = 32
 
 
-def _diffuse(name, reflectance=0.8):
-    material = bpy.data.materials.new(name)
-    api.assign(material, "lambertian", reflectance=(reflectance,) * 3)
-    with bpy.context.temp_override(material=material):
-        assert bpy.ops.bxdf_lab.set_up_cycles() == {"FINISHED"}
-    return material
+_diffuse = pairing_scene.lambertian_material
 
 
 def _ball(material, segments=32, rings=16):

@@ -12,18 +12,13 @@ import pytest
 from mathutils import Vector
 
 import pairing_scene
-from bxdf_lab import api, engine, export
+from bxdf_lab import engine, export
 
 SIZE = 32
 HDRI = "/usr/share/blender/datafiles/studiolights/world/city.exr"
 
 
-def _diffuse(name, reflectance=0.8):
-    material = bpy.data.materials.new(name)
-    api.assign(material, "lambertian", reflectance=(reflectance,) * 3)
-    with bpy.context.temp_override(material=material):
-        assert bpy.ops.bxdf_lab.set_up_cycles() == {"FINISHED"}
-    return material
+_diffuse = pairing_scene.lambertian_material
 
 
 def _add(obj, material):
