@@ -10,7 +10,7 @@ import numpy as np
 from mathutils import Vector
 
 import pairing_scene
-from bxdf_lab import engine, export, renderer
+from bxdf_lab import export, renderer
 
 SIZE = 32
 

@@ -12,7 +12,7 @@ import pytest
 from mathutils import Vector
 
 import pairing_scene
-from bxdf_lab import engine, export
+from bxdf_lab import export
 
 SIZE = 32
 HDRI = "/usr/share/blender/datafiles/studiolights/world/city.exr"
