@@ -7,7 +7,6 @@ import math
 
 import bpy
 import numpy as np
-from mathutils import Vector
 
 import pairing_scene
 from bxdf_lab import export, renderer
