@@ -305,7 +305,9 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
     const BSDFSample bs = bsdf.sample_f(wo, sampler.bsdf(vertex));
     if (!bs.valid() || bs.f.is_black()) break;
     beta *= bs.f_cos / bs.pdf;
-    if (bs.component >= 0 && dynamic_cast<const CyclesTransparent*>(bsdf.component(bs.component))) {
+    // (Only a material with a Transparent BSDF can pass: may_pass spares the others the cast.)
+    if (may_pass && bs.component >= 0 &&
+        TransparentShadows::is_transparent(bsdf.component(bs.component))) {
       // A pass through: the same ray goes on behind the surface (Cycles moves only tmin).
       if (beta.is_black()) break;
       ++transparent_bounces;

@@ -18,7 +18,7 @@ const CyclesTransparent* as_transparent(const BxDF* b) {
 
 bool has_transparent(const Material& m) {
   for (const BxDFPtr& c : m.components)
-    if (as_transparent(c.get())) return true;
+    if (TransparentShadows::is_transparent(c.get())) return true;
   if (m.graph)
     for (const GraphClosure& c : m.graph->closures)
       if (c.model && c.model->name == "cycles_transparent") return true;
@@ -33,6 +33,10 @@ struct ShadowScratch {
 };
 
 }  // namespace
+
+bool TransparentShadows::is_transparent(const BxDF* component) {
+  return as_transparent(component) != nullptr;
+}
 
 TransparentShadows::TransparentShadows(const Scene& scene, int max_transparent_bounces)
     : scene_(scene), max_hits_(max_transparent_bounces) {

@@ -37,6 +37,9 @@ class TransparentShadows {
   // rounding, so that the next query along the same ray starts behind the surface.
   static float past_hit(const Ray& ray, float t);
 
+  // Whether a BSDF component is a Transparent BSDF (a pass-through, not a bounce).
+  static bool is_transparent(const BxDF* component);
+
   // Whether material `index` has a Transparent BSDF (in its components or its graph).
   bool transparent(uint32_t index) const { return transparent_[index] != 0; }
 
