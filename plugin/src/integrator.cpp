@@ -229,14 +229,8 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
     const Vec3 wo = -ray.dir;
     const Material& mat = scene_.materials()[sp.material];
 
-    // Surfaces that only reflect are two-sided: face them towards the viewer. Transmissive
-    // ones keep their orientation, which tells the model inside from outside.
     const bool transmissive = scene_.transmissive(sp.material);
-    const bool flipped = dot(wo, sp.ng) < 0.0f && !transmissive;
-    if (flipped) {
-      sp.ng = -sp.ng;
-      sp.ns = -sp.ns;
-    }
+    const bool flipped = face_viewer(sp, wo, transmissive);
     // Reflection is judged against the shading normal, as Cycles' closures do: directions
     // between the flat triangle and the smooth surface are lit (the terminator offset then lets
     // their shadow rays out). Transmissive surfaces keep the geometric decision. The closures'

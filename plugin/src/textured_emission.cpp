@@ -10,12 +10,7 @@ RGB textured_emission(const Scene& scene, const Hit& hit, const Vec3& towards_vi
   SurfacePoint sp = scene.surface_point(hit);
   const Material& mat = scene.materials()[sp.material];
   if (!mat.graph || mat.graph->emission_is_constant()) return mat.emission;
-  // The integrator's facing rule: surfaces that only reflect turn towards the viewer.
-  const bool flipped = dot(towards_viewer, sp.ng) < 0.0f && !scene.transmissive(sp.material);
-  if (flipped) {
-    sp.ng = -sp.ng;
-    sp.ns = -sp.ns;
-  }
+  const bool flipped = face_viewer(sp, towards_viewer, scene.transmissive(sp.material));
   const ShadingContext ctx{&scene, &hit, sp.p, sp.ns, sp.ng, towards_viewer, flipped};
   mat.graph->evaluate(ctx, registers);
   return mat.graph->emitted(registers);

@@ -54,12 +54,8 @@ RGB TransparentShadows::surface_transparency(const Hit& hit, SurfacePoint sp,
   thread_local ShadowScratch scratch;
   const Material& mat = scene_.materials()[sp.material];
   const Vec3 wo = -dir;
-  // As the path tracer shades: reflecting surfaces face the viewer, here the shadow ray.
-  const bool flipped = dot(wo, sp.ng) < 0.0f && !scene_.transmissive(sp.material);
-  if (flipped) {
-    sp.ng = -sp.ng;
-    sp.ns = -sp.ns;
-  }
+  // As the path tracer shades, the viewer here being the shadow ray's origin.
+  const bool flipped = face_viewer(sp, wo, scene_.transmissive(sp.material));
   BSDF bsdf(Frame::from_normal_tangent(sp.ns, sp.tangent), sp.ns);
   if (mat.graph) {
     const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped};

@@ -42,6 +42,16 @@ struct SurfacePoint {
   uint32_t material = 0;
 };
 
+// How every shading point is oriented: a surface that only reflects is two-sided and turns its
+// normals towards the viewer (`towards_viewer`); a transmissive one keeps its orientation, which
+// tells the model inside from outside. True when the normals were flipped.
+inline bool face_viewer(SurfacePoint& sp, const Vec3& towards_viewer, bool transmissive) {
+  if (transmissive || !(dot(towards_viewer, sp.ng) < 0.0f)) return false;
+  sp.ng = -sp.ng;
+  sp.ns = -sp.ns;
+  return true;
+}
+
 class Scene {
  public:
   Scene();
