@@ -104,6 +104,11 @@ def _fit(image_name):
             if area.type == "IMAGE_EDITOR" and area.spaces.active.image is not None \
                     and area.spaces.active.image.name == image_name:
                 region = next(r for r in area.regions if r.type == "WINDOW")
-                with bpy.context.temp_override(window=window, area=area, region=region):
-                    bpy.ops.image.view_all(fit_view=True)
+                try:
+                    with bpy.context.temp_override(window=window, area=area, region=region):
+                        bpy.ops.image.view_all(fit_view=True)
+                except RuntimeError:
+                    # Blender refuses while it draws or renders ("can't modify blend data in
+                    # this state"); the timer tries again shortly instead of failing.
+                    return 0.2
     return None
