@@ -5,7 +5,8 @@
 // material graph). Each variant is rendered `--repeat` times alternately; the best time of each
 // (in CPU seconds) is reported, with the ratio.
 //
-//   bxdf_bench_textured [--threads T] [--spp N] [--size W] [--repeat R]
+//   bxdf_bench_textured [--threads T] [--spp N] [--size W] [--repeat R] [--only constant|textured]
+// (--only renders one variant, for profiling it alone.)
 #include <OpenImageIO/imageio.h>
 
 #include <ctime>
@@ -103,8 +104,17 @@ int main(int argc, char** argv) {
   s.max_bounces = 4;
   s.threads = 2;
   int repeat = 3;
+  std::string only;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i];
+    if (k == "--only") {
+      only = argv[i + 1];
+      if (only != "constant" && only != "textured") {
+        std::fprintf(stderr, "--only: '%s' is neither 'constant' nor 'textured'\n", only.c_str());
+        return 2;
+      }
+      continue;
+    }
     const int v = std::atoi(argv[i + 1]);
     if (k == "--threads") s.threads = v;
     else if (k == "--spp") s.samples_per_pixel = v;
@@ -159,10 +169,12 @@ int main(int argc, char** argv) {
   CameraSettings camera;
   camera.camera_to_world = look_at(Vec3(0, -6, 2.5f), Vec3(0, 0, -0.3f), Vec3(0, 0, 1));
   double best_constant = 1e30, best_textured = 1e30;
-  render_seconds(*constant_scene, camera, s);  // warm-up (thread pool, caches)
+  render_seconds(only == "textured" ? *textured_scene : *constant_scene, camera, s);  // warm-up
   for (int r = 0; r < repeat; ++r) {
-    best_constant = std::min(best_constant, render_seconds(*constant_scene, camera, s));
-    best_textured = std::min(best_textured, render_seconds(*textured_scene, camera, s));
+    if (only != "textured")
+      best_constant = std::min(best_constant, render_seconds(*constant_scene, camera, s));
+    if (only != "constant")
+      best_textured = std::min(best_textured, render_seconds(*textured_scene, camera, s));
   }
   std::printf("%dx%d, %d spp, %d bounces, %d threads, best of %d:\n", s.width, s.height,
               s.samples_per_pixel, s.max_bounces, s.threads, repeat);

@@ -21,16 +21,6 @@ Vec3 rotate_around_axis(const Vec3& p, const Vec3& axis, float angle) {
   return p * c + cross(axis, p) * s + axis * (dot(axis, p) * (1.0f - c));
 }
 
-Vec3 read_input(const GraphInput& in, const Vec3* registers) {
-  const Vec3 v = in.reg < 0 ? in.constant : registers[in.reg];
-  switch (in.convert) {
-    case GraphConvert::None: return v;
-    case GraphConvert::ColorToFloat: return splat(luminance(v));
-    case GraphConvert::VectorToFloat: return splat((v.x + v.y + v.z) * (1.0f / 3.0f));
-  }
-  return v;
-}
-
 void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
   const Scene& scene = *ctx.scene;
   // The surface each node reads: the hit, or the bump offsets p + dpdx, p + dpdy (with the
@@ -77,9 +67,7 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
       case GraphOp::Incoming: out[0] = ctx.incoming; break;
       case GraphOp::Image: {
         const Vec3 uv = in(0);
-        const RGBA c = textures[size_t(node.index)]->lookup(uv.x, uv.y, node.flag);
-        out[0] = Vec3(c.r, c.g, c.b);
-        out[1] = splat(c.a);
+        textures[size_t(node.index)]->lookup(uv.x, uv.y, node.flag, out);
         break;
       }
       case GraphOp::Environment: {
@@ -90,9 +78,7 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
         const Point2 uv = EnvironmentProjection(node.mode) == EnvironmentProjection::MirrorBall
                               ? direction_to_mirrorball(dir)
                               : direction_to_equirect(dir);
-        const RGBA c = textures[size_t(node.index)]->lookup(uv.x, uv.y, node.flag);
-        out[0] = Vec3(c.r, c.g, c.b);
-        out[1] = splat(c.a);
+        textures[size_t(node.index)]->lookup(uv.x, uv.y, node.flag, out);
         break;
       }
       case GraphOp::Transform:
@@ -201,7 +187,13 @@ RGB MaterialGraph::holdout(const Vec3* registers) const {
 
 void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
                                  ClosureArena& arena, BSDF& bsdf) const {
-  PlainValue values[kMaxClosureParams];
+  // Left uninitialised (PlainValue's members have initialisers): zeroing all 48 at every hit
+  // cost more than the closures' own set-up; each closure writes the values it reads.
+  union Values {
+    Values() {}
+    PlainValue v[kMaxClosureParams];
+  } storage;
+  PlainValue* const values = storage.v;
   int frame_reg = -1;  // closures that share a normal share its frame
   Frame frame;
   for (const GraphClosure& c : closures) {

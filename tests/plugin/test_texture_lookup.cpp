@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <array>
 #include <filesystem>
 #include <fstream>
 
@@ -181,5 +182,70 @@ TEST(TextureLookup, FilesThroughOpenImageIO) {
   TextureSettings unreadable;
   unreadable.path = path + ".does-not-exist.png";
   EXPECT_THROW(store.get(unreadable), ParameterError);
+  std::remove(path.c_str());
+}
+
+// 8-bit storage (RGBA and one-channel) reads as the float grid of byte/255 values, to the bit,
+// for every interpolation and extension: one formula whatever the storage. Includes a grid one
+// texel wide, where Repeat wraps every neighbour onto the same texel, and points far outside.
+TEST(TextureLookup, ByteStoragesReadAsTheirFloatValues) {
+  for (const auto& [w, h] : {std::pair{5, 3}, std::pair{1, 4}}) {
+    TexelGrid bytes, grey, as_float, grey_as_float;
+    for (TexelGrid* g : {&bytes, &grey, &as_float, &grey_as_float}) {
+      g->width = w;
+      g->height = h;
+    }
+    for (int i = 0; i < w * h; ++i) {
+      const std::array<unsigned char, 4> b{static_cast<unsigned char>(37 * i + 3),
+                                           static_cast<unsigned char>(255 - 11 * i),
+                                           static_cast<unsigned char>(91 * i % 256),
+                                           static_cast<unsigned char>(128 + 9 * i)};
+      bytes.bytes.push_back(b);
+      grey.grey_bytes.push_back(b[0]);
+      constexpr float k = 1.0f / 255.0f;
+      as_float.texels.push_back({float(b[0]) * k, float(b[1]) * k, float(b[2]) * k, float(b[3]) * k});
+      grey_as_float.texels.push_back({float(b[0]) * k, float(b[0]) * k, float(b[0]) * k, 1.0f});
+    }
+    for (auto interpolation : {TextureInterpolation::Closest, TextureInterpolation::Linear,
+                               TextureInterpolation::Cubic})
+      for (auto extension : {TextureExtension::Repeat, TextureExtension::Extend, TextureExtension::Clip})
+        for (float u : {-3.7f, -0.05f, 0.0f, 0.1f, 0.5f, 0.93f, 1.0f, 5.2f})
+          for (float v : {-1.4f, 0.0f, 0.3f, 0.77f, 1.02f, 9.6f}) {
+            SCOPED_TRACE(::testing::Message() << w << "x" << h << " interp " << int(interpolation)
+                                              << " ext " << int(extension) << " u " << u << " v " << v);
+            const RGBA b = interpolate_texels(bytes, interpolation, extension, u, v);
+            const RGBA f = interpolate_texels(as_float, interpolation, extension, u, v);
+            EXPECT_EQ(b.r, f.r);
+            EXPECT_EQ(b.g, f.g);
+            EXPECT_EQ(b.b, f.b);
+            EXPECT_EQ(b.a, f.a);
+            const RGBA gb = interpolate_texels(grey, interpolation, extension, u, v);
+            const RGBA gf = interpolate_texels(grey_as_float, interpolation, extension, u, v);
+            EXPECT_EQ(gb.r, gf.r);
+            EXPECT_EQ(gb.b, gf.b);
+            EXPECT_EQ(gb.a, gf.a);
+          }
+  }
+}
+
+// Every 8-bit sRGB value converts as Cycles' color_srgb_to_linear (its fastpow24 is within
+// ~1e-6 of powf), on both sides of the linear segment's end at 0.04045.
+TEST(TextureLookup, SrgbBytesConvertAsCycles) {
+  std::vector<unsigned char> row;
+  for (int i = 0; i < 256; ++i) row.insert(row.end(), {static_cast<unsigned char>(i), 0, 255, 255});
+  const std::string path = write_png("bxdf_texture_srgb_ramp.png", 256, 1, row);
+  TextureStore store;
+  TextureSettings s;
+  s.path = path;
+  s.interpolation = TextureInterpolation::Closest;
+  const auto tex = store.get(s);
+  for (int i = 0; i < 256; ++i) {
+    const RGBA c = tex->lookup((float(i) + 0.5f) / 256.0f, 0.5f, false);
+    const float want = srgb_to_linear(float(i) / 255.0f);
+    EXPECT_NEAR(c.r, want, 2e-6f * std::max(want, 1.0f)) << "byte " << i;
+    EXPECT_EQ(c.g, 0.0f);
+    EXPECT_NEAR(c.b, 1.0f, 2e-6f);
+    EXPECT_EQ(c.a, 1.0f);
+  }
   std::remove(path.c_str());
 }

@@ -109,11 +109,14 @@ ModelInfo cycles_glossy_model() {
                distribution = param_index(m.params, "distribution"),
                roughness = param_index(m.params, "roughness"),
                anisotropy = param_index(m.params, "anisotropy");
-  const auto& choices = m.params[distribution].choices;
+  // An enum's plain value is the index of its choice in the declaration; the names are
+  // matched once here, not at every hit.
+  std::vector<GlossyDistribution> by_choice;
+  for (const std::string& choice : m.params[distribution].choices)
+    by_choice.push_back(glossy_distribution(choice));
   m.place = [=](const PlainValue* v, ClosureArena& arena) -> const BxDF* {
-    // An enum's plain value is the index of its choice in the declaration.
-    const auto choice = choices[static_cast<size_t>(v[distribution].x)];
-    return build_cycles_glossy(plain_rgb(v[color]), glossy_distribution(choice),
+    return build_cycles_glossy(plain_rgb(v[color]),
+                               by_choice[static_cast<size_t>(v[distribution].x)],
                                v[roughness].x, v[anisotropy].x,
                                [&](auto type, const auto&... args) -> const BxDF* {
                                  return place_from(arena, type, args...);

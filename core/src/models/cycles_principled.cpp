@@ -449,29 +449,37 @@ CyclesPrincipledInputs principled_inputs(Num&& num, Color&& rgb, Choice&& choice
   return in;
 }
 
-// Plain values read by name without allocating: the mapping asks in declaration order, so
-// the search starts after the previous hit and nearly always succeeds at once.
-class PlainReader {
- public:
-  PlainReader(const std::vector<ParamSpec>& params, const PlainValue* values)
-      : params_(params), values_(values) {}
-  size_t index(const char* name) {
-    for (size_t k = 0; k < params_.size(); ++k) {
-      const size_t i = (next_ + k) % params_.size();
-      if (params_[i].name == name) {
-        next_ = i + 1;
-        return i;
-      }
-    }
-    return 0;  // unreachable: the mapping only asks for declared names
-  }
-  const PlainValue& operator()(const char* name) { return values_[index(name)]; }
 
- private:
-  const std::vector<ParamSpec>& params_;
-  const PlainValue* values_;
-  size_t next_ = 0;
-};
+// The parameter indices principled_inputs reads, in the order it reads them (its reads are
+// straight-line code, so the order is fixed): found by name once, when the model is declared,
+// and replayed at every hit, where reading by name compared strings per parameter.
+std::vector<size_t> principled_read_order(const std::vector<ParamSpec>& params) {
+  std::vector<size_t> order;
+  auto record = [&](const char* name) {
+    order.push_back(param_index(params, name));
+    return order.back();
+  };
+  principled_inputs([&](const char* name) { record(name); return 0.0f; },
+                    [&](const char* name) { record(name); return RGB(0.0f); },
+                    [&](const char* name) -> const std::string& {
+                      return params[record(name)].choices.front();
+                    });
+  return order;
+}
+
+CyclesPrincipledInputs principled_inputs_in_order(const std::vector<ParamSpec>& params,
+                                                  const std::vector<size_t>& order,
+                                                  const PlainValue* values) {
+  size_t next = 0;
+  return principled_inputs(
+      [&](const char*) { return values[order[next++]].x; },
+      [&](const char*) { return plain_rgb(values[order[next++]]); },
+      // An enum's plain value is the index of its choice in the declaration.
+      [&](const char*) -> const std::string& {
+        const size_t i = order[next++];
+        return params[i].choices[static_cast<size_t>(values[i].x)];
+      });
+}
 
 }  // namespace
 
@@ -484,15 +492,7 @@ CyclesPrincipledInputs cycles_principled_inputs(const ParamSet& p) {
 
 CyclesPrincipledInputs cycles_principled_inputs(const std::vector<ParamSpec>& params,
                                                 const PlainValue* values) {
-  PlainReader read(params, values);
-  return principled_inputs(
-      [&](const char* name) { return read(name).x; },
-      [&](const char* name) { return plain_rgb(read(name)); },
-      // An enum's plain value is the index of its choice in the declaration.
-      [&](const char* name) -> const std::string& {
-        const size_t i = read.index(name);
-        return params[i].choices[static_cast<size_t>(values[i].x)];
-      });
+  return principled_inputs_in_order(params, principled_read_order(params), values);
 }
 
 ModelInfo cycles_principled_model() {
@@ -525,8 +525,9 @@ ModelInfo cycles_principled_model() {
   m.create = [](const ParamSet& p) -> std::unique_ptr<BxDF> {
     return std::make_unique<CyclesPrincipled>(cycles_principled_inputs(p));
   };
-  m.place = [params = m.params](const PlainValue* v, ClosureArena& arena) -> const BxDF* {
-    return arena.make<CyclesPrincipled>(cycles_principled_inputs(params, v));
+  m.place = [params = m.params, order = principled_read_order(m.params)](
+                const PlainValue* v, ClosureArena& arena) -> const BxDF* {
+    return arena.make<CyclesPrincipled>(principled_inputs_in_order(params, order, v));
   };
   m.place_size = sizeof(CyclesPrincipled);
   return m;

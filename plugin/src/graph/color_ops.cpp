@@ -49,8 +49,6 @@ Vec3 mix_hue(float t, const Vec3& a, const Vec3& b, bool with_saturation) {
 
 }  // namespace
 
-float luminance(const Vec3& c) { return 0.2126729f * c.x + 0.7151522f * c.y + 0.0721750f * c.z; }
-
 Vec3 mix_rgb(MixBlend blend, float fac, const Vec3& a, const Vec3& b, bool clamp) {
   const float t = saturate(fac);
   const Vec3 one = splat(1.0f);

@@ -52,7 +52,6 @@ Vec3 bright_contrast(const Vec3& color, float bright, float contrast);
 Vec3 hsv(float hue, float saturation, float value, float fac, const Vec3& color);
 Vec3 rgb_to_hsv(const Vec3& rgb);
 Vec3 hsv_to_rgb(const Vec3& hsv);
-float luminance(const Vec3& rgb);  // Cycles' Rec.709 colour → float
 // Fresnel node: Cycles' fresnel_dielectric_cos(dot(I, N), η), η inverted on back faces.
 float fresnel_node(float ior, const Vec3& incoming, const Vec3& normal, bool backfacing);
 // Layer Weight: fresnel and facing outputs.

@@ -125,8 +125,28 @@ class MaterialGraph {
   uint32_t flags() const;
 };
 
-// Reads a register input, converting as the consumer expects.
-Vec3 read_input(const GraphInput& in, const Vec3* registers);
+// Cycles' colour → float: Rec.709 luminance with its coefficients.
+inline float luminance(const Vec3& c) {
+  return 0.2126729f * c.x + 0.7151522f * c.y + 0.0721750f * c.z;
+}
+
+// Reads a register input, converting as the consumer expects (a vector → float is the mean).
+// Inline: every node input and closure parameter goes through it at every hit.
+inline Vec3 read_input(const GraphInput& in, const Vec3* registers) {
+  const Vec3 v = in.reg < 0 ? in.constant : registers[in.reg];
+  switch (in.convert) {
+    case GraphConvert::None: return v;
+    case GraphConvert::ColorToFloat: {
+      const float y = luminance(v);
+      return {y, y, y};
+    }
+    case GraphConvert::VectorToFloat: {
+      const float m = (v.x + v.y + v.z) * (1.0f / 3.0f);
+      return {m, m, m};
+    }
+  }
+  return v;
+}
 inline float read_float(const GraphInput& in, const Vec3* registers) {
   return read_input(in, registers).x;
 }

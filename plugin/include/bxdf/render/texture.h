@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bxdf/math.h"
 #include "bxdf/spectrum.h"
 
 namespace bxdf::render {
@@ -54,6 +55,9 @@ class Texture {
   // The image node's Color and Alpha at (u, v): Cycles' interpolation and extension, then
   // alpha unassociated when `unassociate` (the node's Alpha output is used), then sRGB → linear.
   RGBA lookup(float u, float v, bool unassociate) const;
+  // The same, stored as a material graph's registers hold the node's outputs: the colour in
+  // out[0], the alpha as (a, a, a) in out[1] (no RGBA passes through the stack per hit).
+  void lookup(float u, float v, bool unassociate, Vec3* out) const;
 
   const TextureSettings& settings() const { return settings_; }
   const TexelGrid& texels() const { return grid_; }
