@@ -151,6 +151,40 @@ Float4 srgb_to_linear(Float4 c) {
   return out;
 }
 
+// The same conversion tabulated at 4097 points of [0, 1] and interpolated linearly: within
+// 3e-8 of the function (its second derivative stays below 3.4), well inside fastpow24's own
+// 1e-6 from powf, and several times cheaper than three dependent divisions. 8-bit images, the
+// sRGB ones Cycles converts after the lookup, only give values in [0, 1]; anything outside
+// takes the function.
+class SrgbTable {
+ public:
+  static constexpr int kIntervals = 4096;
+  SrgbTable() {
+    for (int i = 0; i <= kIntervals; ++i)
+      value_[size_t(i)] = srgb_to_linear(splat4(float(i) / float(kIntervals)))[0];
+  }
+  Float4 convert(Float4 c) const {
+    if (!(c[0] >= 0.0f && c[0] <= 1.0f && c[1] >= 0.0f && c[1] <= 1.0f && c[2] >= 0.0f &&
+          c[2] <= 1.0f))
+      return srgb_to_linear(c);
+    for (int k = 0; k < 3; ++k) {
+      const float x = c[k] * float(kIntervals);
+      const int i = std::min(static_cast<int>(x), kIntervals - 1);
+      const float t = x - float(i);
+      c[k] = value_[size_t(i)] + t * (value_[size_t(i) + 1] - value_[size_t(i)]);
+    }
+    return c;
+  }
+
+ private:
+  std::array<float, kIntervals + 1> value_;
+};
+
+const SrgbTable& srgb_table() {
+  static const SrgbTable table;
+  return table;
+}
+
 template <class Texels>
 Float4 interpolate(const TexelGrid& g, const Texels& t, TextureInterpolation interpolation,
                    TextureExtension extension, float x, float y) {
@@ -211,7 +245,7 @@ Float4 image_node_lookup(const TextureSettings& s, const TexelGrid& grid, float 
     c *= splat4(1.0f / alpha);
     c[3] = alpha;
   }
-  if (s.colorspace == TextureColorspace::SRGB) c = srgb_to_linear(c);
+  if (s.colorspace == TextureColorspace::SRGB) c = srgb_table().convert(c);
   return c;
 }
 

@@ -247,5 +247,19 @@ TEST(TextureLookup, SrgbBytesConvertAsCycles) {
     EXPECT_NEAR(c.b, 1.0f, 2e-6f);
     EXPECT_EQ(c.a, 1.0f);
   }
+  // Between texel centres the interpolated (still sRGB) value is converted: bilinear along the
+  // ramp, at points that fall between the conversion's own tabulation points.
+  s.interpolation = TextureInterpolation::Linear;
+  s.extension = TextureExtension::Extend;
+  const auto linear = store.get(s);
+  for (int k = 0; k < 2000; ++k) {
+    const float x = 0.5f + 254.999f * float(k) / 1999.0f;  // texel coordinates, centre to centre
+    const int i = std::min(static_cast<int>(x - 0.5f), 254);
+    const float t = x - 0.5f - float(i);
+    const float stored = (1.0f - t) * (float(i) / 255.0f) + t * (float(i + 1) / 255.0f);
+    const float want = srgb_to_linear(stored);
+    EXPECT_NEAR(linear->lookup(x / 256.0f, 0.5f, false).r, want, 2e-6f * std::max(want, 1.0f))
+        << "texel coordinate " << x;
+  }
   std::remove(path.c_str());
 }
