@@ -66,8 +66,18 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
       case GraphOp::Normal: out[0] = ctx.n; break;
       case GraphOp::Incoming: out[0] = ctx.incoming; break;
       case GraphOp::Image: {
+        if (node.grouped) break;  // looked up with its group's first node
         const Vec3 uv = in(0);
-        textures[size_t(node.index)]->lookup(uv.x, uv.y, node.flag, out);
+        const Texture& texture = *textures[size_t(node.index)];
+        if (node.group_count == 0) {
+          texture.lookup(uv.x, uv.y, node.flag, out);
+          break;
+        }
+        const TexelFootprint footprint = texture.footprint(uv.x, uv.y);
+        for (int k = 0; k < node.group_count; ++k) {
+          const GraphNode& member = nodes[size_t(image_groups[size_t(node.group_first + k)])];
+          textures[size_t(member.index)]->lookup(footprint, member.flag, r + member.out);
+        }
         break;
       }
       case GraphOp::Environment: {
@@ -165,6 +175,36 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
         break;
       }
     }
+  }
+}
+
+void MaterialGraph::group_images() {
+  image_groups.clear();
+  for (GraphNode& node : nodes) {
+    node.group_first = node.group_count = 0;
+    node.grouped = false;
+  }
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    GraphNode& first = nodes[i];
+    if (first.op != GraphOp::Image || first.grouped) continue;
+    const GraphInput& coords = first.in[0];
+    const Texture& texture = *textures[size_t(first.index)];
+    std::vector<int> group;
+    for (size_t j = i; j < nodes.size(); ++j) {
+      const GraphNode& other = nodes[j];
+      const GraphInput& c = other.in[0];
+      // Registers are written once, so one register (or one constant) is one point.
+      if (other.op == GraphOp::Image && !other.grouped && other.offset == first.offset &&
+          c.reg == coords.reg && c.convert == coords.convert &&
+          (c.reg >= 0 || c.constant == coords.constant) &&
+          texture.shares_footprints(*textures[size_t(other.index)]))
+        group.push_back(int(j));
+    }
+    if (group.size() < 2) continue;
+    first.group_first = int(image_groups.size());
+    first.group_count = int(group.size());
+    for (size_t k = 1; k < group.size(); ++k) nodes[size_t(group[k])].grouped = true;
+    image_groups.insert(image_groups.end(), group.begin(), group.end());
   }
 }
 

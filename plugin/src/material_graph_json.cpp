@@ -171,6 +171,7 @@ class GraphReader {
     if (closures.empty() && g_->emission.reg < 0 && g_->emission.constant == Vec3())
       fail(field, "a graph needs at least one closure or an emission");
     g_->num_registers = next_register_;
+    g_->group_images();
     return g_;
   }
 

@@ -70,27 +70,10 @@ Float4 read_clip(const TexelGrid& g, const Texels& t, int x, int y) {
   return t[size_t(y) * size_t(g.width) + size_t(x)];
 }
 
-template <class Texels>
-Float4 closest(const TexelGrid& g, const Texels& t, TextureExtension extension, float x, float y) {
-  int ix, iy;
-  frac(x * static_cast<float>(g.width), &ix);
-  frac(y * static_cast<float>(g.height), &iy);
-  if (extension == TextureExtension::Repeat) {
-    ix = wrap_repeat(ix, g.width);
-    iy = wrap_repeat(iy, g.height);
-  } else {
-    if (extension == TextureExtension::Clip && (x < 0.0f || y < 0.0f || x > 1.0f || y > 1.0f))
-      return Float4{};
-    ix = wrap_clamp(ix, g.width);
-    iy = wrap_clamp(iy, g.height);
-  }
-  return read_clip(g, t, ix, iy);
-}
-
 // Texel indices of the footprint of a linear (n = 2) or cubic (n = 4) lookup along one axis:
 // from ix − 1 (cubic) or ix (linear), each wrapped as the extension says. False when Clip
 // leaves no texel inside.
-bool footprint(int ix, int width, TextureExtension extension, int n, int* out) {
+bool axis_footprint(int ix, int width, TextureExtension extension, int n, int* out) {
   const int first = n == 4 ? ix - 1 : ix;
   switch (extension) {
     case TextureExtension::Repeat: {
@@ -185,49 +168,83 @@ const SrgbTable& srgb_table() {
   return table;
 }
 
+// The weighted sum of the footprint's texels, in Cycles' order (bilinear: the two rows'
+// pairs, then their sum; cubic: each row, then the rows).
 template <class Texels>
-Float4 interpolate(const TexelGrid& g, const Texels& t, TextureInterpolation interpolation,
-                   TextureExtension extension, float x, float y) {
-  if (interpolation == TextureInterpolation::Closest) return closest(g, t, extension, x, y);
-  // A −0.5 offset centres the samples on the texel centres (i + 0.5)/width.
-  int ix, iy;
-  const float tx = frac(x * static_cast<float>(g.width) - 0.5f, &ix);
-  const float ty = frac(y * static_cast<float>(g.height) - 0.5f, &iy);
-  const int n = interpolation == TextureInterpolation::Linear ? 2 : 4;
-  int xs[4], ys[4];
-  if (!footprint(ix, g.width, extension, n, xs) || !footprint(iy, g.height, extension, n, ys))
-    return Float4{};
-  if (n == 2) {
-    // Cycles' bilinear sum, in its order.
-    return (read_clip(g, t, xs[0], ys[0]) * splat4((1.0f - ty) * (1.0f - tx)) +
-            read_clip(g, t, xs[1], ys[0]) * splat4((1.0f - ty) * tx)) +
-           (read_clip(g, t, xs[0], ys[1]) * splat4(ty * (1.0f - tx)) +
-            read_clip(g, t, xs[1], ys[1]) * splat4(ty * tx));
+Float4 gather(const TexelGrid& g, const Texels& t, const TexelFootprint& f) {
+  switch (f.n) {
+    case 0: return Float4{};
+    case 1: return read_clip(g, t, f.xs[0], f.ys[0]);
+    case 2:
+      return (read_clip(g, t, f.xs[0], f.ys[0]) * splat4(f.wy[0] * f.wx[0]) +
+              read_clip(g, t, f.xs[1], f.ys[0]) * splat4(f.wy[0] * f.wx[1])) +
+             (read_clip(g, t, f.xs[0], f.ys[1]) * splat4(f.wy[1] * f.wx[0]) +
+              read_clip(g, t, f.xs[1], f.ys[1]) * splat4(f.wy[1] * f.wx[1]));
+    default: {
+      Float4 out{};
+      for (int j = 0; j < 4; ++j) {
+        Float4 row{};
+        for (int i = 0; i < 4; ++i) row += read_clip(g, t, f.xs[i], f.ys[j]) * splat4(f.wx[i]);
+        out += row * splat4(f.wy[j]);
+      }
+      return out;
+    }
   }
-  float wx[4], wy[4];
-  cubic_weights(tx, wx);
-  cubic_weights(ty, wy);
-  Float4 out{};
-  for (int j = 0; j < n; ++j) {
-    Float4 row{};
-    for (int i = 0; i < n; ++i) row += read_clip(g, t, xs[i], ys[j]) * splat4(wx[i]);
-    out += row * splat4(wy[j]);
-  }
-  return out;
 }
 
-Float4 interpolate_grid(const TexelGrid& g, TextureInterpolation interpolation,
-                        TextureExtension extension, float x, float y) {
-  if (!g.grey_bytes.empty()) return interpolate(g, GreyByteTexels{g}, interpolation, extension, x, y);
-  if (!g.bytes.empty()) return interpolate(g, ByteTexels{g}, interpolation, extension, x, y);
-  return interpolate(g, FloatTexels{g}, interpolation, extension, x, y);
+Float4 gather_grid(const TexelGrid& g, const TexelFootprint& f) {
+  if (!g.grey_bytes.empty()) return gather(g, GreyByteTexels{g}, f);
+  if (!g.bytes.empty()) return gather(g, ByteTexels{g}, f);
+  return gather(g, FloatTexels{g}, f);
 }
 
 }  // namespace
 
+TexelFootprint texel_footprint(int width, int height, TextureInterpolation interpolation,
+                               TextureExtension extension, float x, float y) {
+  TexelFootprint f;
+  if (width <= 0 || height <= 0) return f;  // no texels (a missing image): nothing to read
+  int ix, iy;
+  if (interpolation == TextureInterpolation::Closest) {
+    frac(x * static_cast<float>(width), &ix);
+    frac(y * static_cast<float>(height), &iy);
+    if (extension == TextureExtension::Repeat) {
+      ix = wrap_repeat(ix, width);
+      iy = wrap_repeat(iy, height);
+    } else {
+      if (extension == TextureExtension::Clip && (x < 0.0f || y < 0.0f || x > 1.0f || y > 1.0f))
+        return f;
+      ix = wrap_clamp(ix, width);
+      iy = wrap_clamp(iy, height);
+    }
+    f.n = 1;
+    f.xs[0] = ix;
+    f.ys[0] = iy;
+    return f;
+  }
+  // A −0.5 offset centres the samples on the texel centres (i + 0.5)/width.
+  const float tx = frac(x * static_cast<float>(width) - 0.5f, &ix);
+  const float ty = frac(y * static_cast<float>(height) - 0.5f, &iy);
+  const int n = interpolation == TextureInterpolation::Linear ? 2 : 4;
+  if (!axis_footprint(ix, width, extension, n, f.xs) ||
+      !axis_footprint(iy, height, extension, n, f.ys))
+    return f;
+  f.n = n;
+  if (n == 2) {
+    f.wx[0] = 1.0f - tx;
+    f.wx[1] = tx;
+    f.wy[0] = 1.0f - ty;
+    f.wy[1] = ty;
+  } else {
+    cubic_weights(tx, f.wx);
+    cubic_weights(ty, f.wy);
+  }
+  return f;
+}
+
 RGBA interpolate_texels(const TexelGrid& g, TextureInterpolation interpolation,
                         TextureExtension extension, float x, float y) {
-  return to_rgba(interpolate_grid(g, interpolation, extension, x, y));
+  return to_rgba(gather_grid(g, texel_footprint(g.width, g.height, interpolation, extension, x, y)));
 }
 
 Texture::Texture(const TextureSettings& settings, TexelGrid texels)
@@ -235,11 +252,11 @@ Texture::Texture(const TextureSettings& settings, TexelGrid texels)
 
 namespace {
 
-// The image node's Color and Alpha from the grid (Texture::lookup's two forms).
-Float4 image_node_lookup(const TextureSettings& s, const TexelGrid& grid, float u, float v,
-                         bool unassociate) {
+// The image node's Color and Alpha from the texels the footprint names.
+Float4 image_node_lookup(const TextureSettings& s, const TexelGrid& grid,
+                         const TexelFootprint& footprint, bool unassociate) {
   if (s.missing) return Float4{1.0f, 0.0f, 1.0f, 1.0f};  // Cycles' TEX_IMAGE_MISSING
-  Float4 c = interpolate_grid(grid, s.interpolation, s.extension, u, v);
+  Float4 c = gather_grid(grid, footprint);
   const float alpha = c[3];
   if (unassociate && alpha != 1.0f && alpha != 0.0f) {
     c *= splat4(1.0f / alpha);
@@ -249,16 +266,35 @@ Float4 image_node_lookup(const TextureSettings& s, const TexelGrid& grid, float 
   return c;
 }
 
+void store_node_outputs(Float4 c, Vec3* out) {
+  out[0] = Vec3(c[0], c[1], c[2]);
+  out[1] = Vec3(c[3], c[3], c[3]);
+}
+
 }  // namespace
 
+TexelFootprint Texture::footprint(float u, float v) const {
+  return texel_footprint(grid_.width, grid_.height, settings_.interpolation, settings_.extension,
+                         u, v);
+}
+
+bool Texture::shares_footprints(const Texture& other) const {
+  return !settings_.missing && !other.settings_.missing && grid_.width == other.grid_.width &&
+         grid_.height == other.grid_.height &&
+         settings_.interpolation == other.settings_.interpolation &&
+         settings_.extension == other.settings_.extension;
+}
+
 RGBA Texture::lookup(float u, float v, bool unassociate) const {
-  return to_rgba(image_node_lookup(settings_, grid_, u, v, unassociate));
+  return to_rgba(image_node_lookup(settings_, grid_, footprint(u, v), unassociate));
 }
 
 void Texture::lookup(float u, float v, bool unassociate, Vec3* out) const {
-  const Float4 c = image_node_lookup(settings_, grid_, u, v, unassociate);
-  out[0] = Vec3(c[0], c[1], c[2]);
-  out[1] = Vec3(c[3], c[3], c[3]);
+  store_node_outputs(image_node_lookup(settings_, grid_, footprint(u, v), unassociate), out);
+}
+
+void Texture::lookup(const TexelFootprint& f, bool unassociate, Vec3* out) const {
+  store_node_outputs(image_node_lookup(settings_, grid_, f, unassociate), out);
 }
 
 struct TextureStore::Cache {

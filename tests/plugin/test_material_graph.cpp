@@ -285,6 +285,65 @@ TEST(MaterialGraph, BumpReevaluatesTheHeightAtOffsetPoints) {
             "graph.nodes[6].height: a bump's height cannot depend on another bump's normal");
 }
 
+// Image nodes that read one UV point of images of one size and settings share one footprint
+// computation (MaterialGraph::group_images); every node's Color and Alpha stay exactly its
+// own image's lookup. Images of another size, another interpolation or other coordinates are
+// looked up on their own.
+TEST(MaterialGraph, ImagesOnOneUVMapShareTheirFootprint) {
+  auto ramp = [](int w, int h, float scale) {
+    std::vector<float> rgb;
+    for (int i = 0; i < w * h; ++i) rgb.insert(rgb.end(), {scale * float(i), 0.5f * scale, 1.0f - 0.01f * float(i)});
+    return rgb;
+  };
+  const std::string a = write_pfm("bxdf_group_a.pfm", 4, 3, ramp(4, 3, 0.05f));
+  const std::string b = write_pfm("bxdf_group_b.pfm", 4, 3, ramp(4, 3, 0.02f));
+  const std::string c = write_pfm("bxdf_group_c.pfm", 5, 3, ramp(5, 3, 0.03f));
+  TextureStore store;
+  const json graph = {
+      {"textures", {{{"path", a}, {"colorspace", "linear"}}, {{"path", b}, {"colorspace", "non_color"}},
+                    {{"path", c}, {"colorspace", "linear"}},
+                    {{"path", a}, {"colorspace", "linear"}, {"interpolation", "closest"}}}},
+      {"nodes", {{{"op", "uv"}},
+                 {{"op", "image"}, {"texture", 0}, {"vector", {{"node", 0}}}},
+                 {{"op", "image"}, {"texture", 1}, {"vector", {{"node", 0}}}},
+                 {{"op", "image"}, {"texture", 2}, {"vector", {{"node", 0}}}},
+                 {{"op", "image"}, {"texture", 3}, {"vector", {{"node", 0}}}},
+                 {{"op", "vector_math"}, {"operation", "scale"}, {"a", {{"node", 0}}}, {"scale", 1.7}},
+                 {{"op", "image"}, {"texture", 1}, {"vector", {{"node", 5}}}},
+                 {{"op", "image"}, {"texture", 0}, {"vector", {{"node", 0}}}}}},
+      {"closures", {{{"model", "lambertian"}, {"weight", {{"node", 1}, {"out", "color"}}}}}}};
+  const auto g = read_material_graph(graph, "graph", "", store);
+  EXPECT_EQ(g->image_groups, (std::vector<int>{1, 2, 7}));
+  EXPECT_EQ(g->nodes[1].group_count, 3);
+  for (int k : {2, 7}) EXPECT_TRUE(g->nodes[size_t(k)].grouped);
+  for (int k : {3, 4, 6}) EXPECT_FALSE(g->nodes[size_t(k)].grouped || g->nodes[size_t(k)].group_count);
+
+  Scene scene;
+  scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
+  scene.add_mesh(uv_quad().view());
+  scene.commit();
+  std::vector<Vec3> registers(MaterialGraph::kMaxRegisters);
+  for (float b1 : {0.05f, 0.3f, 0.61f})
+    for (float b2 : {0.1f, 0.37f}) {
+      Hit hit;
+      hit.b1 = b1;
+      hit.b2 = b2;
+      const SurfacePoint sp = scene.surface_point(hit);
+      const ShadingContext ctx{&scene, &hit, sp.p, sp.ns, sp.ng, Vec3(0, 0, 1), false};
+      g->evaluate(ctx, registers.data());
+      const Vec3 uv = registers[size_t(g->nodes[0].out)];
+      for (size_t k : {1, 2, 3, 4, 6, 7}) {
+        const GraphNode& node = g->nodes[k];
+        const Vec3 at = k == 6 ? uv * 1.7f : uv;
+        const RGBA want = g->textures[size_t(node.index)]->lookup(at.x, at.y, node.flag);
+        const Vec3 color = registers[size_t(node.out)], alpha = registers[size_t(node.out) + 1];
+        EXPECT_EQ(color, Vec3(want.r, want.g, want.b)) << "node " << k;
+        EXPECT_EQ(alpha.x, want.a) << "node " << k;
+      }
+    }
+  for (const std::string& p : {a, b, c}) std::remove(p.c_str());
+}
+
 // Tangents arrive in world space (moved with the mesh by the object matrix A); normal maps
 // read them in object space, as Cycles composes the mapped normal there, and move normals
 // between the spaces by Aᵀ and A⁻ᵀ.

@@ -50,6 +50,12 @@ struct GraphNode {
   uint8_t offset = 0;
   std::array<GraphInput, 6> in{};
   int out = 0;  // first output register; a node's outputs are consecutive
+  // Image nodes reading one point of images of one size and settings (textures on one UV
+  // map, the common case) form a group: its first node finds the texels' footprint once and
+  // looks up every image of the group (node indices MaterialGraph::image_groups[group_first,
+  // + group_count)); the others are then done (`grouped`).
+  int group_first = 0, group_count = 0;
+  bool grouped = false;
 };
 
 struct GraphClosure {
@@ -109,6 +115,10 @@ class MaterialGraph {
   // origin (so that p + offset stays well resolved in float): Cycles' offsets are its ray
   // differentials, about a pixel's footprint; ours are a fixed small step (docs/material-graph.md).
   static constexpr float kBumpOffset = 1e-3f;
+
+  std::vector<int> image_groups;
+  // Forms the image groups once the nodes and textures are final.
+  void group_images();
 
   // Runs the program; `registers` holds kMaxRegisters.
   void evaluate(const ShadingContext& ctx, Vec3* registers) const;

@@ -46,6 +46,17 @@ struct TexelGrid {
   std::vector<unsigned char> grey_bytes;  // one-channel 8-bit images (alpha 1), or empty
 };
 
+// Which texels a lookup at (u, v) reads, and their weights: Cycles' interpolation, extension
+// and texel-centre convention. Found once for several images of one size and settings read
+// at one point (textures on one UV map), then each image reads its own texels.
+struct TexelFootprint {
+  int n = 0;           // texels a side: 1 Closest, 2 Linear, 4 Cubic; 0 nothing (Clip, outside)
+  int xs[4], ys[4];    // columns and rows, wrapped as the extension says (Clip: may be outside)
+  float wx[4], wy[4];  // column and row weights
+};
+TexelFootprint texel_footprint(int width, int height, TextureInterpolation interpolation,
+                               TextureExtension extension, float u, float v);
+
 class Texture {
  public:
   // Reads the image (any format OpenImageIO reads; the scene's textures share an ImageCache).
@@ -58,6 +69,10 @@ class Texture {
   // The same, stored as a material graph's registers hold the node's outputs: the colour in
   // out[0], the alpha as (a, a, a) in out[1] (no RGBA passes through the stack per hit).
   void lookup(float u, float v, bool unassociate, Vec3* out) const;
+  // The same in two steps, the first shared by images that shares_footprints() says agree.
+  TexelFootprint footprint(float u, float v) const;
+  void lookup(const TexelFootprint& footprint, bool unassociate, Vec3* out) const;
+  bool shares_footprints(const Texture& other) const;
 
   const TextureSettings& settings() const { return settings_; }
   const TexelGrid& texels() const { return grid_; }
