@@ -168,28 +168,40 @@ const SrgbTable& srgb_table() {
   return table;
 }
 
+// Texel (i, j) of the footprint: unchecked when all of it is inside the grid, else zero
+// outside (only Clip reaches outside).
+template <bool kInside, class Texels>
+Float4 footprint_texel(const TexelGrid& g, const Texels& t, const TexelFootprint& f, int i, int j) {
+  if constexpr (kInside) return t[f.rows[j] + size_t(f.xs[i])];
+  else return read_clip(g, t, f.xs[i], f.ys[j]);
+}
+
 // The weighted sum of the footprint's texels, in Cycles' order (bilinear: the two rows'
 // pairs, then their sum; cubic: each row, then the rows).
-template <class Texels>
+template <bool kInside, class Texels>
 Float4 gather(const TexelGrid& g, const Texels& t, const TexelFootprint& f) {
+  auto at = [&](int i, int j) { return footprint_texel<kInside>(g, t, f, i, j); };
   switch (f.n) {
     case 0: return Float4{};
-    case 1: return read_clip(g, t, f.xs[0], f.ys[0]);
+    case 1: return at(0, 0);
     case 2:
-      return (read_clip(g, t, f.xs[0], f.ys[0]) * splat4(f.wy[0] * f.wx[0]) +
-              read_clip(g, t, f.xs[1], f.ys[0]) * splat4(f.wy[0] * f.wx[1])) +
-             (read_clip(g, t, f.xs[0], f.ys[1]) * splat4(f.wy[1] * f.wx[0]) +
-              read_clip(g, t, f.xs[1], f.ys[1]) * splat4(f.wy[1] * f.wx[1]));
+      return (at(0, 0) * splat4(f.wy[0] * f.wx[0]) + at(1, 0) * splat4(f.wy[0] * f.wx[1])) +
+             (at(0, 1) * splat4(f.wy[1] * f.wx[0]) + at(1, 1) * splat4(f.wy[1] * f.wx[1]));
     default: {
       Float4 out{};
       for (int j = 0; j < 4; ++j) {
         Float4 row{};
-        for (int i = 0; i < 4; ++i) row += read_clip(g, t, f.xs[i], f.ys[j]) * splat4(f.wx[i]);
+        for (int i = 0; i < 4; ++i) row += at(i, j) * splat4(f.wx[i]);
         out += row * splat4(f.wy[j]);
       }
       return out;
     }
   }
+}
+
+template <class Texels>
+Float4 gather(const TexelGrid& g, const Texels& t, const TexelFootprint& f) {
+  return f.inside ? gather<true>(g, t, f) : gather<false>(g, t, f);
 }
 
 Float4 gather_grid(const TexelGrid& g, const TexelFootprint& f) {
@@ -220,6 +232,8 @@ TexelFootprint texel_footprint(int width, int height, TextureInterpolation inter
     f.n = 1;
     f.xs[0] = ix;
     f.ys[0] = iy;
+    f.inside = true;  // wrapped or clamped into the grid
+    f.rows[0] = size_t(iy) * size_t(width);
     return f;
   }
   // A −0.5 offset centres the samples on the texel centres (i + 0.5)/width.
@@ -230,6 +244,11 @@ TexelFootprint texel_footprint(int width, int height, TextureInterpolation inter
       !axis_footprint(iy, height, extension, n, f.ys))
     return f;
   f.n = n;
+  f.inside = true;
+  for (int k = 0; k < n; ++k) {
+    f.inside = f.inside && f.xs[k] >= 0 && f.xs[k] < width && f.ys[k] >= 0 && f.ys[k] < height;
+    f.rows[k] = size_t(f.ys[k] < 0 ? 0 : f.ys[k]) * size_t(width);
+  }
   if (n == 2) {
     f.wx[0] = 1.0f - tx;
     f.wx[1] = tx;

@@ -53,6 +53,8 @@ struct TexelFootprint {
   int n = 0;           // texels a side: 1 Closest, 2 Linear, 4 Cubic; 0 nothing (Clip, outside)
   int xs[4], ys[4];    // columns and rows, wrapped as the extension says (Clip: may be outside)
   float wx[4], wy[4];  // column and row weights
+  bool inside = false;  // every texel in the grid (all but Clip at the edge): read unchecked,
+  size_t rows[4];       // then row j starts at texel rows[j]
 };
 TexelFootprint texel_footprint(int width, int height, TextureInterpolation interpolation,
                                TextureExtension extension, float u, float v);
