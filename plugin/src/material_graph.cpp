@@ -13,6 +13,14 @@ namespace {
 
 Vec3 splat(float v) { return {v, v, v}; }
 
+// N objects of a type whose members have initialisers, left uninitialised: per-hit scratch
+// that would otherwise be written at every call, and is written before it is read.
+template <class T, size_t N>
+union Uninitialised {
+  Uninitialised() {}
+  T items[N];
+};
+
 }  // namespace
 
 // Rodrigues' rotation of p about the unit axis, as Cycles' rotate_around_axis.
@@ -27,7 +35,8 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
   // hit's barycentrics moved along, so that attributes follow, as Cycles' bump_dx nodes do).
   const Hit* hits[3] = {ctx.hit, ctx.hit, ctx.hit};
   Vec3 points[3] = {ctx.p, ctx.p, ctx.p};
-  Hit offset_hits[2];
+  Uninitialised<Hit, 2> offset_storage;  // filled only for bumps: no stores at other hits
+  Hit* const offset_hits = offset_storage.items;
   Vec3 dpdx, dpdy;
   if (reads_offsets) {
     Vec3 a, b;
@@ -152,8 +161,9 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
         // keeps its length in object space as Cycles' object-space interpolation has it.
         const Vec3 smooth = scene.smooth_normal(hit);
         Vec3 normal = scene.normal_to_object(hit, smooth);
-        const float object_length = length(normal);
-        if (object_length > 0.0f) normal = normal * (length(smooth) / object_length);
+        const float object_length2 = length_squared(normal);
+        if (object_length2 > 0.0f)
+          normal = normal * std::sqrt(length_squared(smooth) / object_length2);
         Vec3 mapped = scene.normal_to_world(hit, normal_map_compose(in(1), tangent, sign, normal));
         if (!normalize_direction(mapped)) mapped = Vec3(0.0f, 0.0f, 0.0f);
         out[0] = ensure_valid_reflection(
@@ -227,13 +237,10 @@ RGB MaterialGraph::holdout(const Vec3* registers) const {
 
 void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
                                  ClosureArena& arena, BSDF& bsdf) const {
-  // Left uninitialised (PlainValue's members have initialisers): zeroing all 48 at every hit
-  // cost more than the closures' own set-up; each closure writes the values it reads.
-  union Values {
-    Values() {}
-    PlainValue v[kMaxClosureParams];
-  } storage;
-  PlainValue* const values = storage.v;
+  // Left uninitialised: zeroing all 48 at every hit cost more than the closures' own set-up;
+  // each closure writes the values it reads.
+  Uninitialised<PlainValue, kMaxClosureParams> storage;
+  PlainValue* const values = storage.items;
   int frame_reg = -1;  // closures that share a normal share its frame
   Frame frame;
   for (const GraphClosure& c : closures) {
