@@ -104,7 +104,9 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
   if (!light || light->visibility.cast_shadow) {
     Vec3 p = sp.p;
     SmoothTriangle tri;
-    if (terminator.geometry > 0.0f && scene_.smooth_triangle(hit, &tri)) {
+    // The triangle is fetched only for the few light directions near the terminator.
+    if (terminator_offset_amount(sp.ns, sp.ng, ls.wi, terminator.geometry) > 0.0f &&
+        scene_.smooth_triangle(hit, &tri)) {
       bool lifted = false;
       p = terminator_shadow_origin(tri, hit.b1, hit.b2, sp.p, sp.ns, sp.ng, ls.wi,
                                    terminator.geometry, &lifted);

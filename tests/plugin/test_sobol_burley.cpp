@@ -188,3 +188,28 @@ TEST(PathSampler, PixelsGetDifferentSequencesAndSeedsChangeThem) {
   EXPECT_NE(a.bsdf(0).x, c.bsdf(0).x);
   EXPECT_EQ(a.bsdf(0).x, PathSampler(PathSampler::pixel_seed(10, 20, 0), 0).bsdf(0).x);
 }
+
+TEST(PathSampler, DrawsAreTheSetsSobolBurleyPointsAtEveryBounce) {
+  // The sampler reverses the index once and looks the first sets' hashes up in a table; its
+  // numbers must stay those of sample(index, pixel seed ^ hash(set number)), with set number
+  // bounce * 4 + purpose (filter, light, BSDF, Russian roulette), also past the table.
+  uint32_t index = 0u;
+  for (uint32_t k = 0; k < 200; ++k) {
+    index = k < 100 ? k : sobol::hash(index + k);  // small and full 32-bit indices
+    const uint32_t seed = PathSampler::pixel_seed(k % 7, k / 7, 99);
+    const PathSampler sampler(seed, index);
+    const auto filter = sobol::sample<2>(index, seed ^ sobol::hash(0));
+    ASSERT_EQ(sampler.filter().x, filter[0]);
+    ASSERT_EQ(sampler.filter().y, filter[1]);
+    for (int bounce = 0; bounce < 40; ++bounce) {
+      const uint32_t set = static_cast<uint32_t>(bounce) * 4u;
+      const auto light = sobol::sample<3>(index, seed ^ sobol::hash(set + 1u));
+      const auto bsdf = sobol::sample<2>(index, seed ^ sobol::hash(set + 2u));
+      const auto rr = sobol::sample<1>(index, seed ^ sobol::hash(set + 3u));
+      ASSERT_EQ(sampler.light(bounce), light) << "bounce " << bounce << " index " << index;
+      ASSERT_EQ(sampler.bsdf(bounce).x, bsdf[0]) << "bounce " << bounce;
+      ASSERT_EQ(sampler.bsdf(bounce).y, bsdf[1]) << "bounce " << bounce;
+      ASSERT_EQ(sampler.russian_roulette(bounce), rr[0]) << "bounce " << bounce;
+    }
+  }
+}

@@ -6,6 +6,7 @@
 // index): images do not depend on threads, tiles or the split into passes.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "bxdf/math.h"
@@ -17,7 +18,7 @@ class PathSampler {
  public:
   // `pixel_seed` from pixel_seed(); `sample_index` counts the pixel's samples from 0.
   PathSampler(uint32_t pixel_seed, uint32_t sample_index)
-      : seed_(pixel_seed), index_(sample_index) {}
+      : seed_(pixel_seed), index_(sample_index), reversed_index_(sobol::reverse_bits(sample_index)) {}
 
   // A pixel's seed: its position and the render seed, hashed.
   static uint32_t pixel_seed(uint32_t x, uint32_t y, uint64_t render_seed) {
@@ -29,11 +30,11 @@ class PathSampler {
   Point2 filter() const { return point2(set(kFilter, 0)); }
   // (light choice, light point u, light point v) at a path vertex.
   std::array<float, 3> light(int bounce) const {
-    return sobol::sample<3>(index_, set(kLight, bounce));
+    return sobol::sample_reversed<3>(reversed_index_, set(kLight, bounce));
   }
   Point2 bsdf(int bounce) const { return point2(set(kBsdf, bounce)); }
   float russian_roulette(int bounce) const {
-    return sobol::sample<1>(index_, set(kRussianRoulette, bounce))[0];
+    return sobol::sample_reversed<1>(reversed_index_, set(kRussianRoulette, bounce))[0];
   }
   // A number of its own for each (pixel, sample): the multiscatter walks' salt (nonzero, but
   // for one pair in 2^64).
@@ -42,16 +43,26 @@ class PathSampler {
  private:
   enum Purpose : uint32_t { kFilter, kLight, kBsdf, kRussianRoulette, kPurposes };
 
+  // The hashes of the first sets' numbers, made at compile time: one hash less per draw.
+  static constexpr int kTabulatedSets = 64;
+  static constexpr std::array<uint32_t, kTabulatedSets> kSetHashes = [] {
+    std::array<uint32_t, kTabulatedSets> h{};
+    for (uint32_t i = 0; i < kTabulatedSets; ++i) h[i] = sobol::hash(i);
+    return h;
+  }();
+
   uint32_t set(Purpose purpose, int bounce) const {
-    return seed_ ^ sobol::hash(static_cast<uint32_t>(bounce) * kPurposes + purpose);
+    const uint32_t set_number = static_cast<uint32_t>(bounce) * kPurposes + purpose;
+    return seed_ ^ (set_number < kTabulatedSets ? kSetHashes[set_number] : sobol::hash(set_number));
   }
   Point2 point2(uint32_t seed) const {
-    const std::array<float, 2> u = sobol::sample<2>(index_, seed);
+    const std::array<float, 2> u = sobol::sample_reversed<2>(reversed_index_, seed);
     return Point2(u[0], u[1]);
   }
 
   uint32_t seed_;
   uint32_t index_;
+  uint32_t reversed_index_;  // reverse_bits(index_), which every set's draw starts from
 };
 
 }  // namespace bxdf::render

@@ -20,7 +20,7 @@ constexpr int kDimensions = 4;
 // contribution of index bit i, as a 32-bit binary fraction.
 const std::array<uint32_t, 32>& directions(int d);
 
-inline uint32_t reverse_bits(uint32_t x) {
+constexpr uint32_t reverse_bits(uint32_t x) {
   // Bits within each byte, then the bytes with one byte swap (one instruction on x86).
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
@@ -30,7 +30,7 @@ inline uint32_t reverse_bits(uint32_t x) {
 
 // An integer hash with good avalanche (Wellons' lowbias32): turns structured seeds (pixel
 // numbers, dimension numbers) into unrelated ones.
-inline uint32_t hash(uint32_t x) {
+constexpr uint32_t hash(uint32_t x) {
   x ^= x >> 16;
   x *= 0x7feb352du;
   x ^= x >> 15;
@@ -85,17 +85,18 @@ inline float to_unit_float(uint32_t x) { return static_cast<float>(x >> 8) * 0x1
 inline constexpr uint32_t kSalt[kDimensions + 1] = {0x9e78e391u, 0x67c33241u, 0x78c395c5u,
                                                     0x39468210u, 0xcaa726acu};
 
-// Coordinates 0..N-1 of sample `index` of the sequence seeded by `seed` (N <= kDimensions).
+// Coordinates 0..N-1 of sample `index` of the sequence seeded by `seed` (N <= kDimensions),
+// from the index's bit reversal: a path reverses its sample index once for all its sets.
 // Different seeds give statistically independent sequences.
 template <int N>
-std::array<float, N> sample(uint32_t index, uint32_t seed) {
+std::array<float, N> sample_reversed(uint32_t reversed_index, uint32_t seed) {
   static_assert(N >= 1 && N <= kDimensions, "Sobol-Burley draws up to kDimensions coordinates");
   // Equal, bit for bit, to
   //   shuffled = owen_scramble(index, hash(seed ^ kSalt[kDimensions]));
   //   out[d] = to_unit_float(owen_scramble(sobol(shuffled, d), hash(seed ^ kSalt[d])));
   // computed in the bit-reversed domain (reversed_shuffled = reverse_bits(shuffled)).
   const uint32_t reversed_shuffled =
-      owen_scramble_reversed(reverse_bits(index), hash(seed ^ kSalt[kDimensions]));
+      owen_scramble_reversed(reversed_index, hash(seed ^ kSalt[kDimensions]));
   std::array<float, N> out{};
   for (int d = 0; d < N; ++d) {
     uint32_t reversed;  // reverse_bits(sobol(shuffled, d))
@@ -110,6 +111,11 @@ std::array<float, N> sample(uint32_t index, uint32_t seed) {
         to_unit_float(reverse_bits(owen_scramble_reversed(reversed, hash(seed ^ kSalt[d]))));
   }
   return out;
+}
+
+template <int N>
+std::array<float, N> sample(uint32_t index, uint32_t seed) {
+  return sample_reversed<N>(reverse_bits(index), seed);
 }
 
 }  // namespace bxdf::render::sobol

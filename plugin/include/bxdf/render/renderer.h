@@ -55,6 +55,10 @@ struct RenderStats {
   uint64_t rejected_samples = 0;  // NaN/Inf/negative radiance dropped
   int samples_per_pixel = 0;      // completed (less than asked when cancelled)
   bool cancelled = false;
+  int threads = 0;                // the threads rendered on
+  // Time the threads spent rendering tiles, summed: tile_seconds / (threads · seconds) is how
+  // busy they were (the rest: waiting at the ends of passes, the set-up, other processes).
+  double tile_seconds = 0.0;
 };
 
 // Renders `scene` (committed) through `camera`. Throws ParameterError for bad settings.

@@ -7,6 +7,8 @@
 //   direction is rescaled so that the light falls off before the terminator.
 #pragma once
 
+#include <cmath>
+
 #include "bxdf/math.h"
 
 namespace bxdf::render {
@@ -15,6 +17,20 @@ namespace bxdf::render {
 struct SmoothTriangle {
   Vec3 v[3], n[3];
 };
+
+// How much of the geometry offset a shadow ray towards unit `wi` gets, in [0, 1]: 0 unless wi
+// is close to the terminator (ns, ng as below), as for most light directions, which can then
+// skip fetching the triangle. Inline: it runs for every shadow ray.
+inline float terminator_offset_amount(const Vec3& ns, const Vec3& ng, const Vec3& wi,
+                                      float geometry_offset) {
+  if (!(geometry_offset > 0.0f)) return 0.0f;
+  const float nl = dot(ns, wi);
+  const float ngl = dot(nl < 0.0f ? -ng : ng, wi);  // against the side wi leaves from
+  const float anl = std::fabs(nl);
+  // Only directions near the terminator are offset, with a smooth transition at the cutoff.
+  return anl < geometry_offset ? clamp(2.0f - (ngl + anl) / geometry_offset, 0.0f, 1.0f)
+                               : clamp(1.0f - ngl / geometry_offset, 0.0f, 1.0f);
+}
 
 // The origin for a shadow ray towards unit `wi` from the point with barycentrics (b1, b2):
 // `p` lifted along the interpolated normal when the offset applies. ns, ng: the shading point's
