@@ -160,6 +160,8 @@ int main(int argc, char** argv) {
     std::printf("wall time        %.3f s\n", stats.seconds);
     std::printf("threads busy     %.1f%% (time in tiles / (threads x wall time))\n",
                 100.0 * stats.tile_seconds / (stats.threads * stats.seconds));
+    std::printf("CPU per sample   %.3f us (the threads' CPU time in tiles per camera sample)\n",
+                1e6 * stats.tile_cpu_seconds / double(stats.camera_samples));
     std::printf("camera samples/s %.4g\n", double(stats.camera_samples) / stats.seconds);
     std::printf("rays/s           %.4g (%.4g closest-hit + %.4g shadow; %.2f rays per sample)\n",
                 all_rays / stats.seconds, double(stats.rays) / stats.seconds,

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <mutex>
 #include <string>
 
@@ -41,6 +42,13 @@ constexpr int kMaxAutoSamplesPerPass = 16;
 struct Tile {
   int x0, y0, x1, y1;
 };
+
+// CPU time of the calling thread (Linux: CLOCK_THREAD_CPUTIME_ID), 0 if the clock is missing.
+double thread_cpu_seconds() {
+  timespec ts{};
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) != 0) return 0.0;
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 }  // namespace
 
@@ -113,22 +121,28 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   const int threads = settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
   int completed_spp = 0;
-  // Each tile's render time in the current pass (summed into tile_seconds after it).
-  std::vector<double> tile_seconds(tiles.size(), 0.0);
-  double busy_seconds = 0.0;
+  // Each tile's render time and its thread's CPU time in the current pass (summed into the
+  // stats after it).
+  struct TileTimes {
+    double wall = 0.0, cpu = 0.0;
+  };
+  std::vector<TileTimes> tile_times(tiles.size());
+  double busy_seconds = 0.0, busy_cpu_seconds = 0.0;
   arena.execute([&] {
     for (int pass = 0; pass < passes && !cancelled(); ++pass) {
       const int first = pass * per_pass;
       const int count = std::min(per_pass, spp - first);
-      std::fill(tile_seconds.begin(), tile_seconds.end(), 0.0);
+      std::fill(tile_times.begin(), tile_times.end(), TileTimes{});
       tbb::parallel_for(
           tbb::blocked_range<size_t>(0, tiles.size(), 1),
           [&](const tbb::blocked_range<size_t>& range) {
             for (size_t t = range.begin(); t != range.end(); ++t) {
               if (cancelled()) return;
               const auto tile_start = std::chrono::steady_clock::now();
+              const double cpu_start = thread_cpu_seconds();
               render_tile(tiles[t], first, count);
-              tile_seconds[t] =
+              tile_times[t].cpu = thread_cpu_seconds() - cpu_start;
+              tile_times[t].wall =
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - tile_start).count();
               std::lock_guard<std::mutex> lock(progress_mutex);  // one callback at a time
               ++progress.tiles_done;
@@ -136,7 +150,10 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
             }
           },
           tbb::simple_partitioner());
-      for (double seconds : tile_seconds) busy_seconds += seconds;
+      for (const TileTimes& times : tile_times) {
+        busy_seconds += times.wall;
+        busy_cpu_seconds += times.cpu;
+      }
       if (cancelled()) break;
       completed_spp = first + count;
       progress.pass = pass + 1;
@@ -154,6 +171,7 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
     stats_out->rejected_samples = rejected;
     stats_out->samples_per_pixel = completed_spp;
     stats_out->tile_seconds = busy_seconds;
+    stats_out->tile_cpu_seconds = busy_cpu_seconds;
     stats_out->threads = threads;
     stats_out->cancelled = completed_spp < spp;
   }

@@ -104,6 +104,10 @@ TEST(Renderer, ProgressPassesAndCancel) {
   EXPECT_EQ(stats.threads, s.threads);
   EXPECT_GT(stats.tile_seconds, 0.0);
   EXPECT_LE(stats.tile_seconds, stats.threads * stats.seconds);
+  // Their CPU time in tiles: some, and no more than the tiles' wall time (a little slack for
+  // the two clocks' granularity).
+  EXPECT_GT(stats.tile_cpu_seconds, 0.0);
+  EXPECT_LE(stats.tile_cpu_seconds, stats.tile_seconds * 1.05 + 1e-3);
 
   // Returning false from the tile callback stops before the next tiles.
   int seen = 0;

@@ -58,6 +58,8 @@ class PathTracer {
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
                        const Vec3& viewer_n, const std::array<float, 3>& u,
                        int transparent_bounces, PathStats& stats) const;
+  // A direction towards the world (light sampler entry lights().size()), drawn from (u1, u2).
+  LightSample world_light_sample(float u1, float u2) const;
   // Radiance a ray collects from the lights it passes through before `tmax`; MIS-weighted
   // against light sampling unless `count_fully` (camera rays, delta bounces).
   RGB lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bool count_fully,

@@ -59,6 +59,9 @@ struct RenderStats {
   // Time the threads spent rendering tiles, summed: tile_seconds / (threads · seconds) is how
   // busy they were (the rest: waiting at the ends of passes, the set-up, other processes).
   double tile_seconds = 0.0;
+  // The same threads' CPU time in tiles, summed: per camera sample, the renderer's cost without
+  // the time other processes took the cores away (steadier than wall time on a shared machine).
+  double tile_cpu_seconds = 0.0;
 };
 
 // Renders `scene` (committed) through `camera`. Throws ParameterError for bad settings.
