@@ -3,13 +3,14 @@
 // parameters are constants, and again with every parameter textured (base colour, roughness,
 // a tangent-space normal map and the mix factor, each a 256² image read per hit through a
 // material graph). Each variant is rendered `--repeat` times alternately; the best time of each
-// (in CPU seconds) is reported, with the ratio.
+// is reported, with the ratio. The time is the render threads' CPU time in tiles
+// (RenderStats::tile_cpu_seconds): the work the materials make, without the time other
+// processes take the cores away (the process's CPU clock swung by 30% between identical runs).
 //
 //   bxdf_bench_textured [--threads T] [--spp N] [--size W] [--repeat R] [--only constant|textured]
 // (--only renders one variant, for profiling it alone.)
 #include <OpenImageIO/imageio.h>
 
-#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -71,12 +72,10 @@ void add_uv_map_and_tangents(Mesh& m) {
   m.tangents = {tangents};
 }
 
-// CPU seconds of the whole process (all threads): less disturbed than wall time when other
-// programs share the cores.
 double render_seconds(const Scene& scene, const CameraSettings& camera, const RenderSettings& s) {
-  const std::clock_t t0 = std::clock();
-  render_scene(scene, camera, s);
-  return double(std::clock() - t0) / CLOCKS_PER_SEC;
+  RenderStats stats;
+  render_scene(scene, camera, s, {}, &stats);
+  return stats.tile_cpu_seconds;
 }
 
 std::unique_ptr<Scene> make_scene(Material material) {

@@ -6,20 +6,13 @@
 #include "bxdf/render/environment.h"
 #include "bxdf/render/graph_ops.h"
 #include "bxdf/render/scene.h"
+#include "bxdf/uninitialised.h"
 
 namespace bxdf::render {
 
 namespace {
 
 Vec3 splat(float v) { return {v, v, v}; }
-
-// N objects of a type whose members have initialisers, left uninitialised: per-hit scratch
-// that would otherwise be written at every call, and is written before it is read.
-template <class T, size_t N>
-union Uninitialised {
-  Uninitialised() {}
-  T items[N];
-};
 
 }  // namespace
 

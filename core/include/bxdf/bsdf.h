@@ -13,6 +13,7 @@
 
 #include "bxdf/bxdf.h"
 #include "bxdf/frame.h"
+#include "bxdf/uninitialised.h"
 
 namespace bxdf {
 
@@ -88,12 +89,15 @@ class BSDF {
   void f_f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, RGB* f,
                    RGB* f_cos, float* pdf) const;
 
-  const BxDF* components_[kMaxComponents] = {};
-  RGB weights_[kMaxComponents];
-  float sample_weights_[kMaxComponents] = {};
-  Frame frames_[kMaxComponents];
+  // The components' slots: add() writes [0, count_), nothing reads past it. Left
+  // uninitialised: a BSDF is built at every path vertex, and writing all eight slots (~500
+  // bytes) cost more than the one or two components most hits add.
+  Uninitialised<const BxDF*, kMaxComponents> components_;
+  Uninitialised<RGB, kMaxComponents> weights_;
+  Uninitialised<float, kMaxComponents> sample_weights_;
+  Uninitialised<Frame, kMaxComponents> frames_;
   enum class BumpShadowing : uint8_t { None, Whole, DiffuseLobes };
-  BumpShadowing bump_shadowing_[kMaxComponents] = {};
+  Uninitialised<BumpShadowing, kMaxComponents> bump_shadowing_;
   int count_ = 0;
 };
 
