@@ -45,6 +45,10 @@ for other in "$BUILD/bench/measured/bxdf_bench_measured" "$BUILD/bench/render/bx
     "$other"
   fi
 done
+echo
+echo "== Cycles' own texture cost on bxdf_bench_textured's scene (bench/cycles_texture_cost.py)"
+blender -b --factory-startup --python-exit-code 1 --python bench/cycles_texture_cost.py 2>&1 \
+  | grep -A3 '^cycles_texture_cost:' || { echo "run-bench: cycles_texture_cost failed" >&2; exit 1; }
 if [ -d "$BUILD/python" ]; then
   echo
   echo "== Python API (bench/python_bench.py)"
