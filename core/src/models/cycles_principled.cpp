@@ -449,7 +449,6 @@ CyclesPrincipledInputs principled_inputs(Num&& num, Color&& rgb, Choice&& choice
   return in;
 }
 
-
 // The parameter indices principled_inputs reads, in the order it reads them (its reads are
 // straight-line code, so the order is fixed): found by name once, when the model is declared,
 // and replayed at every hit, where reading by name compared strings per parameter.
