@@ -121,18 +121,13 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   const int threads = settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
   int completed_spp = 0;
-  // Each tile's render time and its thread's CPU time in the current pass (summed into the
-  // stats after it).
-  struct TileTimes {
-    double wall = 0.0, cpu = 0.0;
-  };
-  std::vector<TileTimes> tile_times(tiles.size());
+  // The tiles' render times and their threads' CPU times, summed under the progress lock each
+  // tile already takes.
   double busy_seconds = 0.0, busy_cpu_seconds = 0.0;
   arena.execute([&] {
     for (int pass = 0; pass < passes && !cancelled(); ++pass) {
       const int first = pass * per_pass;
       const int count = std::min(per_pass, spp - first);
-      std::fill(tile_times.begin(), tile_times.end(), TileTimes{});
       tbb::parallel_for(
           tbb::blocked_range<size_t>(0, tiles.size(), 1),
           [&](const tbb::blocked_range<size_t>& range) {
@@ -141,19 +136,17 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
               const auto tile_start = std::chrono::steady_clock::now();
               const double cpu_start = thread_cpu_seconds();
               render_tile(tiles[t], first, count);
-              tile_times[t].cpu = thread_cpu_seconds() - cpu_start;
-              tile_times[t].wall =
+              const double cpu = thread_cpu_seconds() - cpu_start;
+              const double wall =
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - tile_start).count();
               std::lock_guard<std::mutex> lock(progress_mutex);  // one callback at a time
+              busy_seconds += wall;
+              busy_cpu_seconds += cpu;
               ++progress.tiles_done;
               if (callbacks.on_tile && !callbacks.on_tile(progress)) stop = true;
             }
           },
           tbb::simple_partitioner());
-      for (const TileTimes& times : tile_times) {
-        busy_seconds += times.wall;
-        busy_cpu_seconds += times.cpu;
-      }
       if (cancelled()) break;
       completed_spp = first + count;
       progress.pass = pass + 1;
