@@ -258,7 +258,7 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
       // A node material: run its program at this point, then build its closures in place
       // (not where only emission counts).
       if (scatters || may_pass || !mat.graph->emission_is_constant()) {
-        const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped};
+        const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped, &sp};
         mat.graph->evaluate(ctx, scratch.registers);
       }
       if (camera_ray && !mat.graph->holdouts.empty()) {

@@ -26,10 +26,12 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
   const Scene& scene = *ctx.scene;
   // The surface each node reads: the hit, or the bump offsets p + dpdx, p + dpdy (with the
   // hit's barycentrics moved along, so that attributes follow, as Cycles' bump_dx nodes do).
-  const Hit* hits[3] = {ctx.hit, ctx.hit, ctx.hit};
-  Vec3 points[3] = {ctx.p, ctx.p, ctx.p};
+  // Chosen per node rather than copied into arrays up front: that copy read ctx's fields back
+  // before the caller's stores of them had landed (a store-forwarding stall at every hit).
   Uninitialised<Hit, 2> offset_storage;  // filled only for bumps: no stores at other hits
   Hit* const offset_hits = offset_storage.items;
+  Uninitialised<Vec3, 2> offset_point_storage;
+  Vec3* const offset_points = offset_point_storage.items;
   Vec3 dpdx, dpdy;
   if (reads_offsets) {
     Vec3 a, b;
@@ -39,10 +41,8 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
     dpdy = b * (kBumpOffset * scale);
     offset_hits[0] = scene.offset_hit(*ctx.hit, dpdx);
     offset_hits[1] = scene.offset_hit(*ctx.hit, dpdy);
-    hits[1] = &offset_hits[0];
-    hits[2] = &offset_hits[1];
-    points[1] = ctx.p + dpdx;
-    points[2] = ctx.p + dpdy;
+    offset_points[0] = ctx.p + dpdx;
+    offset_points[1] = ctx.p + dpdy;
   }
   if (default_tangent_reg >= 0) {
     // Cycles' Tangent node default, made perpendicular to N as the node does.
@@ -57,8 +57,9 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
     auto in = [&](int i) { return read_input(node.in[size_t(i)], r); };
     auto in_float = [&](int i) { return read_float(node.in[size_t(i)], r); };
     Vec3* out = r + node.out;
-    const Hit& hit = *hits[node.offset];
-    const Vec3& p = points[node.offset];
+    const bool at_hit = node.offset == 0;
+    const Hit& hit = at_hit ? *ctx.hit : offset_hits[node.offset - 1];
+    const Vec3& p = at_hit ? ctx.p : offset_points[node.offset - 1];
     switch (node.op) {
       case GraphOp::Const: out[0] = in(0); break;
       case GraphOp::UV: out[0] = scene.uv(hit, node.index); break;
@@ -152,7 +153,7 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
         // reflection, done here once per map.
         // The smooth normal is unnormalised (shorter between differing vertex normals), and
         // keeps its length in object space as Cycles' object-space interpolation has it.
-        const Vec3 smooth = scene.smooth_normal(hit);
+        const Vec3 smooth = at_hit && ctx.point ? ctx.point->smooth_normal : scene.smooth_normal(hit);
         Vec3 normal = scene.normal_to_object(hit, smooth);
         const float object_length2 = length_squared(normal);
         if (object_length2 > 0.0f)

@@ -572,10 +572,12 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
   }
   if (!normalize_direction(ng)) ng = Vec3(0, 0, 1);
   Vec3 ns = ng;
+  Vec3 smooth = ng;
   if (!m.normals.empty()) {
     Vec3 n = load3(m.normals, i0) * b0 + load3(m.normals, i1) * hit.b1 +
              load3(m.normals, i2) * hit.b2;
     if (placed) n = placed->normal_to_world(n);
+    smooth = n;
     if (normalize_direction(n)) {
       ns = n;
       // The geometric normal follows the side the shading normals give (pbrt's convention).
@@ -585,6 +587,7 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
   sp.p = p;
   sp.ng = ng;
   sp.ns = ns;
+  sp.smooth_normal = smooth;
   bool have_tangent = false;
   Vec3 tangent;
   if (!m.uvs.empty()) {

@@ -11,7 +11,7 @@ RGB textured_emission(const Scene& scene, const Hit& hit, const Vec3& towards_vi
   const Material& mat = scene.materials()[sp.material];
   if (!mat.graph || mat.graph->emission_is_constant()) return mat.emission;
   const bool flipped = face_viewer(sp, towards_viewer, scene.transmissive(sp.material));
-  const ShadingContext ctx{&scene, &hit, sp.p, sp.ns, sp.ng, towards_viewer, flipped};
+  const ShadingContext ctx{&scene, &hit, sp.p, sp.ns, sp.ng, towards_viewer, flipped, &sp};
   mat.graph->evaluate(ctx, registers);
   return mat.graph->emitted(registers);
 }

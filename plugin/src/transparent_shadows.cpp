@@ -58,7 +58,7 @@ RGB TransparentShadows::surface_transparency(const Hit& hit, SurfacePoint sp,
   const bool flipped = face_viewer(sp, wo, scene_.transmissive(sp.material));
   BSDF bsdf(Frame::from_normal_tangent(sp.ns, sp.tangent), sp.ns);
   if (mat.graph) {
-    const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped};
+    const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped, &sp};
     mat.graph->evaluate(ctx, scratch.registers);
     scratch.arena.reset();
     mat.graph->add_closures(scratch.registers, sp.tangent, scratch.arena, bsdf);

@@ -19,6 +19,7 @@ namespace bxdf::render {
 
 class Scene;
 struct Hit;
+struct SurfacePoint;
 
 enum class GraphOp : uint8_t {
   Const, UV, Generated, Object, Position, Normal, Incoming, Image, Transform, MixRGB, Math,
@@ -92,6 +93,9 @@ struct ShadingContext {
   const Hit* hit = nullptr;
   Vec3 p, n, ng, incoming;
   bool backfacing = false;
+  // The hit's surface point when the caller has it (its smooth normal saves the normal map a
+  // second read of the vertex normals); else the scene is asked.
+  const SurfacePoint* point = nullptr;
 };
 
 class MaterialGraph {

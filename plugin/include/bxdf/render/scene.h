@@ -38,6 +38,9 @@ struct SurfacePoint {
   Vec3 ng;         // geometric normal, on the side of ns
   Vec3 ns;         // interpolated shading normal
   Vec3 tangent;    // dp/du where UVs exist, else radial_tangent (Cycles' default)
+  // Scene::smooth_normal at the hit (unnormalised, world space, never flipped), kept from the
+  // vertex normals surface_point reads anyway: a normal map needs it.
+  Vec3 smooth_normal;
   Point2 uv;
   uint32_t material = 0;
 };
