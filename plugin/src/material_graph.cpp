@@ -158,7 +158,9 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
         const float object_length2 = length_squared(normal);
         if (object_length2 > 0.0f)
           normal = normal * std::sqrt(length_squared(smooth) / object_length2);
-        Vec3 mapped = scene.normal_to_world(hit, normal_map_compose(in(1), tangent, sign, normal));
+        // Normalised once, after the transform: Cycles' safe_normalize before it gives the
+        // same direction (the transform is linear).
+        Vec3 mapped = scene.normal_to_world(hit, normal_map_direction(in(1), tangent, sign, normal));
         if (!normalize_direction(mapped)) mapped = Vec3(0.0f, 0.0f, 0.0f);
         out[0] = ensure_valid_reflection(
             ctx.ng, ctx.incoming, normal_map_finish(mapped, in_float(0), ctx.n, ctx.backfacing));

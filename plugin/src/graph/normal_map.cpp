@@ -3,10 +3,10 @@
 
 namespace bxdf::render {
 
-Vec3 normal_map_compose(const Vec3& color, const Vec3& tangent, float sign, const Vec3& normal) {
+Vec3 normal_map_direction(const Vec3& color, const Vec3& tangent, float sign, const Vec3& normal) {
   const Vec3 c = (color - Vec3(0.5f, 0.5f, 0.5f)) * 2.0f;
   const Vec3 b = cross(normal, tangent) * sign;
-  return safe_normalize(tangent * c.x + b * c.y + normal * c.z);
+  return tangent * c.x + b * c.y + normal * c.z;
 }
 
 Vec3 normal_map_finish(Vec3 n, float strength, const Vec3& shading_normal, bool backfacing) {
@@ -22,8 +22,8 @@ Vec3 normal_map_finish(Vec3 n, float strength, const Vec3& shading_normal, bool 
 
 Vec3 normal_map_tangent(const Vec3& color, float strength, const Vec3& tangent, float sign,
                         const Vec3& smooth_normal, const Vec3& shading_normal, bool backfacing) {
-  return normal_map_finish(normal_map_compose(color, tangent, sign, smooth_normal), strength,
-                           shading_normal, backfacing);
+  const Vec3 n = safe_normalize(normal_map_direction(color, tangent, sign, smooth_normal));
+  return normal_map_finish(n, strength, shading_normal, backfacing);
 }
 
 }  // namespace bxdf::render

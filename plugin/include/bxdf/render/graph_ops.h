@@ -78,11 +78,12 @@ Vec3 hsl_to_rgb(const Vec3& hsl);
 void color_ramp(const ColorRampTable& table, float fac, Vec3* color, float* alpha);
 
 // Normal Map, tangent space (svm/tex_coord.h), in two steps around the object → world normal
-// transform: compose the mapped normal from `color` in [0, 1]³, the UV map's interpolated
-// tangent and sign and the (object-space) smooth normal; then turn it for back faces and apply
+// transform: the mapped normal's direction from `color` in [0, 1]³, the UV map's interpolated
+// tangent and sign and the (object-space) smooth normal (not normalised: the caller normalises
+// after its transform, which keeps the direction); then turn it for back faces and apply
 // Cycles' strength rule about the (world) shading normal. normal_map_tangent does both with
 // no transform between.
-Vec3 normal_map_compose(const Vec3& color, const Vec3& tangent, float sign, const Vec3& normal);
+Vec3 normal_map_direction(const Vec3& color, const Vec3& tangent, float sign, const Vec3& normal);
 Vec3 normal_map_finish(Vec3 n, float strength, const Vec3& shading_normal, bool backfacing);
 Vec3 normal_map_tangent(const Vec3& color, float strength, const Vec3& tangent, float sign,
                         const Vec3& smooth_normal, const Vec3& shading_normal, bool backfacing);
