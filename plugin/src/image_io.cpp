@@ -1,6 +1,5 @@
 #include "bxdf/render/image_io.h"
 
-#include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -107,16 +106,22 @@ void write_image(const std::string& path, const Image& image) {
 }
 
 Image read_image(const std::string& path) {
-  OIIO::ImageBuf buf(path);
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT))
-    throw std::runtime_error("cannot read '" + path + "': " + buf.geterror());
-  const OIIO::ImageSpec& spec = buf.spec();
+  // Straight from the file, not through an ImageBuf: an ImageBuf takes the file's size from
+  // OIIO's shared ImageCache, which may still hold an earlier file of the same name rewritten
+  // within its timestamp's resolution, and then reads the new pixels into a buffer of the old
+  // size (a heap overflow).
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::runtime_error("cannot read '" + path + "': " + OIIO::geterror());
+  const OIIO::ImageSpec spec = in->spec();
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  const bool ok = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+  const std::string error = ok ? "" : in->geterror();
+  in->close();
+  if (!ok) throw std::runtime_error("cannot read '" + path + "': " + error);
   Image img;
   img.width = spec.width;
   img.height = spec.height;
   img.rgba.assign(4 * static_cast<size_t>(img.width) * img.height, 1.0f);
-  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-  buf.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, pixels.data());
   const bool srgb = spec.get_string_attribute("oiio:ColorSpace") == "sRGB" ||
                     spec.format == OIIO::TypeDesc::UINT8;
   const int nc = spec.nchannels;
