@@ -192,7 +192,7 @@ RGB PathTracer::escaped(const Vec3& dir, bool camera_ray, bool count_fully, floa
 }
 
 PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
-                             PathStats& stats) const {
+                             PathStats& stats, const CameraHit* camera_hit) const {
   PathResult result;
   RGB L(0.0f), beta(1.0f);
   float eta_scale = 1.0f;  // product of (η_wi/η_wo)² over refractions: undoes radiance scaling
@@ -219,7 +219,13 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
     ++stats.rays;
     const bool camera_ray = bounce == 0;
     const bool count_fully = camera_ray || specular_bounce;
-    const bool found = scene_.intersect(ray, &hit, camera_ray);
+    bool found;
+    if (vertex == 0 && camera_hit) {
+      found = camera_hit->found;
+      if (found) hit = camera_hit->hit;
+    } else {
+      found = scene_.intersect(ray, &hit, camera_ray);
+    }
     L += beta * lights_along_ray(ray, found ? hit.t : kInfinity, camera_ray, count_fully,
                                  prev_pdf);
     if (!found) {

@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <ctime>
 #include <mutex>
@@ -95,6 +96,28 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   const auto render_tile = [&](const Tile& tile, int first_sample, int count) {
     PathStats local;
     uint64_t samples = 0;
+    // Camera rays go to Embree in packets of consecutive samples (a pixel's, then the next
+    // pixel's): nearby rays, one walk of the BVH. Each ray's hit is what it alone would find.
+    constexpr int kPacket = Scene::kCameraPacket;
+    struct CameraSample {
+      int x, y;
+      uint32_t pixel_seed, index;
+    };
+    std::array<CameraSample, kPacket> queued;
+    std::array<Ray, kPacket> camera_rays;
+    std::array<CameraHit, kPacket> hits;
+    int n = 0;
+    const auto trace_queued = [&] {
+      scene.intersect_camera_rays(camera_rays.data(), n, hits.data());
+      for (int k = 0; k < n; ++k) {
+        const CameraSample& c = queued[size_t(k)];
+        const PathSampler sampler(c.pixel_seed, c.index);
+        const PathResult r = tracer.trace(camera_rays[size_t(k)], sampler, local, &hits[size_t(k)]);
+        film.add_sample(c.x, c.y, r.radiance, std::max(r.alpha, background_alpha));
+      }
+      samples += uint64_t(n);
+      n = 0;
+    };
     for (int y = tile.y0; y < tile.y1; ++y) {
       for (int x = tile.x0; x < tile.x1; ++x) {
         // The pixel's samples are points first_sample.. of its own Sobol-Burley sequence: the
@@ -104,14 +127,14 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
         for (int s = first_sample; s < first_sample + count; ++s) {
           const PathSampler sampler(pixel_seed, static_cast<uint32_t>(s));
           const Point2 offset = filter.sample(sampler.filter());
-          const Ray ray = camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
-                                              static_cast<float>(y) + 0.5f + offset.y);
-          const PathResult r = tracer.trace(ray, sampler, local);
-          film.add_sample(x, y, r.radiance, std::max(r.alpha, background_alpha));
-          ++samples;
+          camera_rays[size_t(n)] = camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
+                                                       static_cast<float>(y) + 0.5f + offset.y);
+          queued[size_t(n)] = {x, y, pixel_seed, static_cast<uint32_t>(s)};
+          if (++n == kPacket) trace_queued();
         }
       }
     }
+    if (n > 0) trace_queued();
     rays += local.rays;
     shadow_rays += local.shadow_rays;
     rejected += local.rejected;

@@ -514,18 +514,61 @@ bool Scene::intersect(const Ray& ray, Hit* hit, bool camera_ray) const {
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(embree_->scene, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  hit->t = rh.ray.tfar;
-  if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-    hit->instance = rh.hit.instID[0] - static_cast<uint32_t>(meshes_.size());
-    hit->mesh = instances_[hit->instance].mesh;
-  } else {
-    hit->instance = kNotInstanced;
-    hit->mesh = rh.hit.geomID;
-  }
-  hit->triangle = rh.hit.primID;
-  hit->b1 = rh.hit.u;
-  hit->b2 = rh.hit.v;
+  *hit = decode_hit(rh.ray.tfar, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, rh.hit.u,
+                    rh.hit.v);
   return true;
+}
+
+Hit Scene::decode_hit(float t, uint32_t geometry, uint32_t instance, uint32_t triangle, float u,
+                      float v) const {
+  Hit hit;
+  hit.t = t;
+  if (instance != RTC_INVALID_GEOMETRY_ID) {
+    hit.instance = instance - static_cast<uint32_t>(meshes_.size());
+    hit.mesh = instances_[hit.instance].mesh;
+  } else {
+    hit.instance = kNotInstanced;
+    hit.mesh = geometry;
+  }
+  hit.triangle = triangle;
+  hit.b1 = u;
+  hit.b2 = v;
+  return hit;
+}
+
+void Scene::intersect_camera_rays(const Ray* rays, int count, CameraHit* hits) const {
+  static_assert(kCameraPacket == 8, "one RTCRayHit8 packet");
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(32) int valid[8];
+  alignas(32) RTCRayHit8 rh;
+  for (int k = 0; k < 8; ++k) {
+    // Unused lanes are invalid and carry a harmless ray.
+    const Ray& ray = rays[k < count ? k : 0];
+    valid[k] = k < count ? -1 : 0;
+    rh.ray.org_x[k] = ray.origin.x;
+    rh.ray.org_y[k] = ray.origin.y;
+    rh.ray.org_z[k] = ray.origin.z;
+    rh.ray.dir_x[k] = ray.dir.x;
+    rh.ray.dir_y[k] = ray.dir.y;
+    rh.ray.dir_z[k] = ray.dir.z;
+    rh.ray.tnear[k] = ray.tmin;
+    rh.ray.tfar[k] = ray.tmax;
+    rh.ray.time[k] = 0.0f;
+    rh.ray.mask[k] = kMaskCamera;
+    rh.ray.id[k] = 0;
+    rh.ray.flags[k] = 0;
+    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect8(valid, embree_->scene, &ctx, &rh);
+  for (int k = 0; k < count; ++k) {
+    hits[k].found = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+    if (hits[k].found)
+      hits[k].hit = decode_hit(rh.ray.tfar[k], rh.hit.geomID[k], rh.hit.instID[0][k],
+                               rh.hit.primID[k], rh.hit.u[k], rh.hit.v[k]);
+  }
 }
 
 bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {

@@ -51,7 +51,10 @@ class PathTracer {
 
   // Radiance along a camera ray; never NaN, Inf or negative (such samples are counted in
   // stats->rejected and returned as 0).
-  PathResult trace(const Ray& camera_ray, const PathSampler& sampler, PathStats& stats) const;
+  // `camera_hit`, when given, is the camera ray's first hit, already found
+  // (Scene::intersect_camera_rays).
+  PathResult trace(const Ray& camera_ray, const PathSampler& sampler, PathStats& stats,
+                   const CameraHit* camera_hit = nullptr) const;
 
  private:
   // `viewer_n`: viewer_side_normal of the hit (computed once per hit by trace).

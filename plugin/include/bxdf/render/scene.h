@@ -32,6 +32,12 @@ struct Hit {
   uint32_t instance = kNotInstanced;  // which placement of an instanced mesh, or kNotInstanced
 };
 
+// A camera ray's first hit, found with others in one packet query (found false: it escaped).
+struct CameraHit {
+  Hit hit;
+  bool found = false;
+};
+
 // The shading point built from a hit.
 struct SurfacePoint {
   Vec3 p;          // on the triangle (from barycentrics, not from the ray: more accurate)
@@ -107,6 +113,11 @@ class Scene {
 
   // Closest hit in [ray.tmin, ray.tmax]; camera rays skip meshes invisible to the camera.
   bool intersect(const Ray& ray, Hit* hit, bool camera_ray = false) const;
+  // Up to kCameraPacket camera rays at once (one Embree packet query): what intersect(ray, hit,
+  // true) finds for each. Camera rays of nearby samples are coherent, and a packet walks the
+  // BVH for all of them together.
+  static constexpr int kCameraPacket = 8;
+  void intersect_camera_rays(const Ray* rays, int count, CameraHit* hits) const;
   // True when something blocks the segment origin + t·dir, t in (0, tmax); meshes that do not
   // cast shadows are skipped.
   bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;
@@ -186,6 +197,9 @@ class Scene {
     return hit.instance == kNotInstanced ? meshes_[hit.mesh].object : instances_[hit.instance].object;
   }
   Vec3 world_vertex(const StoredMesh& m, const Hit& hit, uint32_t vertex) const;
+  // An Embree hit (geometry, instance and primitive IDs, barycentrics) as a Hit.
+  Hit decode_hit(float t, uint32_t geometry, uint32_t instance, uint32_t triangle, float u,
+                 float v) const;
   // The mesh light of a mesh drawn as itself (instance kNotInstanced) or of one placement.
   void add_mesh_light(uint32_t mesh, uint32_t instance, int* light_index);
 
