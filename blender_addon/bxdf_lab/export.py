@@ -64,6 +64,16 @@ def _fan_corners(loop_start, loop_total):
     return corners, triangle_polygon
 
 
+def _indices(collection, prop, count):
+    """An index property of every element (loops' vertex_index, polygons' loop_start, ...) as
+    int32. Read into uint32, the type Blender 3.4 keeps these unsigned properties in: foreach_get
+    then copies the raw array, ~15x faster than into int32, which it fills element by element
+    through RNA. Viewed as int32 without a copy (Blender's indices are below 2^31)."""
+    out = np.empty(count, dtype=np.uint32)
+    collection.foreach_get(prop, out)
+    return out.view(np.int32)
+
+
 def _loop_triangle_corners(mesh):
     """The general (slower, RNA per element) path for meshes with n-gons: Blender's own
     triangulation of each polygon."""
@@ -80,12 +90,9 @@ def mesh_arrays(mesh):
     n_vertices, n_polygons, n_loops = len(mesh.vertices), len(mesh.polygons), len(mesh.loops)
     positions = np.empty(n_vertices * 3, dtype=np.float32)
     mesh.vertices.foreach_get("co", positions)
-    loop_vertex = np.empty(n_loops, dtype=np.int32)
-    mesh.loops.foreach_get("vertex_index", loop_vertex)
-    loop_start = np.empty(n_polygons, dtype=np.int32)
-    mesh.polygons.foreach_get("loop_start", loop_start)
-    loop_total = np.empty(n_polygons, dtype=np.int32)
-    mesh.polygons.foreach_get("loop_total", loop_total)
+    loop_vertex = _indices(mesh.loops, "vertex_index", n_loops)
+    loop_start = _indices(mesh.polygons, "loop_start", n_polygons)
+    loop_total = _indices(mesh.polygons, "loop_total", n_polygons)
     # Polygon arrays are raw memory (fast); loop_triangles go through RNA per element (about
     # 1 s per million triangles), so triangles and quads are split here and only n-gons use them.
     if n_polygons == 0 or loop_total.max() <= 4:
