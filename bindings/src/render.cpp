@@ -50,6 +50,9 @@ struct Channel {
   std::condition_variable wake;
   uint64_t tiles_done = 0, tiles_total = 0;
   bool tiles_changed = false;
+  // When finished tiles last woke the Python thread: they wake it at most every
+  // kTileReportInterval (its wait times out as often, so no report comes later than that).
+  std::chrono::steady_clock::time_point tiles_woke;
   std::vector<float> pass_image;  // the film after the latest pass not yet handed to Python
   bool pass_ready = false;
   bool finished = false;
@@ -70,13 +73,21 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
   render::RenderCallbacks callbacks;
   callbacks.cancel = &cancel;
   callbacks.on_tile = [&](const render::RenderProgress& p) {
+    bool wake = false;
     {
       std::lock_guard<std::mutex> lock(channel.mutex);
       channel.tiles_done = p.tiles_done;
       channel.tiles_total = p.tiles_total;
       channel.tiles_changed = true;
+      // A wake-up per tile (hundreds per pass) made the Python thread take a core from the
+      // render each time, only to find its report interval not yet over and sleep again.
+      const auto now = std::chrono::steady_clock::now();
+      if (now - channel.tiles_woke >= kTileReportInterval) {
+        channel.tiles_woke = now;
+        wake = true;
+      }
     }
-    channel.wake.notify_one();
+    if (wake) channel.wake.notify_one();
     return !cancel.load();
   };
   callbacks.on_pass = [&](const render::Film& film, const render::RenderProgress& p) {
