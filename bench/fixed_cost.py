@@ -9,8 +9,10 @@ times per engine, alternating, at `--spp` samples (1: what is left is the cost o
 scene in and the image out). Each render is timed as the user sees it (bpy.ops.render.render,
 no file written); BXDF_LAB's time is split into the engine's phases (engine.PHASES, from the
 render report's timings) plus Blender's own share (the operator's time outside the engine's
-render()). Prints each phase's median in ms and the load average, which says how much of the
-machine other processes took.
+render()). Cycles' time has no such split, so both engines also render at twice the samples, and
+each engine's fixed cost is estimated the same way, as 2 T(spp) - T(2 spp) (the operator's
+medians): what a render costs besides its samples. Prints medians in ms and the load average,
+which says how much of the machine other processes took.
 """
 import argparse
 import os
@@ -64,6 +66,7 @@ def main():
         timed_render(name, spec, args.spp, 0, args.threads)
     phases = {p: [] for p in engine.PHASES + ("blender", "operator")}
     cycles = []
+    doubled = {"BXDF_LAB": [], "CYCLES": []}  # the operator's seconds at 2 spp
     for r in range(args.renders):
         seconds = timed_render("BXDF_LAB", spec, args.spp, r, args.threads)
         timings = render_report.last("render").timings
@@ -74,6 +77,8 @@ def main():
         phases["blender"].append(seconds - timings["total"])
         phases["operator"].append(seconds)
         cycles.append(timed_render("CYCLES", spec, args.spp, r, args.threads))
+        for name in doubled:
+            doubled[name].append(timed_render(name, spec, 2 * args.spp, r, args.threads))
 
     width, height = spec.resolution
     print(f"fixed_cost: scene {args.scene} ({width}x{height}), {args.spp} spp, {args.threads} "
@@ -82,6 +87,11 @@ def main():
     ms = lambda xs: 1000.0 * statistics.median(xs)  # noqa: E731
     print("BXDF_LAB ms: " + ", ".join(f"{p} {ms(phases[p]):.1f}" for p in phases))
     print(f"CYCLES ms: operator {ms(cycles):.1f}")
+    fixed = {"BXDF_LAB": 2 * ms(phases["operator"]) - ms(doubled["BXDF_LAB"]),
+             "CYCLES": 2 * ms(cycles) - ms(doubled["CYCLES"])}
+    print(f"{2 * args.spp} spp ms: BXDF_LAB {ms(doubled['BXDF_LAB']):.1f}, CYCLES "
+          f"{ms(doubled['CYCLES']):.1f}; fixed cost 2 T({args.spp}) - T({2 * args.spp}): "
+          f"BXDF_LAB {fixed['BXDF_LAB']:.1f}, CYCLES {fixed['CYCLES']:.1f}")
     print(f"BXDF_LAB / CYCLES (operator): {statistics.median(phases['operator']) / statistics.median(cycles):.2f}")
 
 
