@@ -127,7 +127,11 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
 
             settings = renderer.settings_dict(scene.bxdf_lab_render, purpose,
                                               renderer.transparent_max_bounces(scene))
-            image, stats = renderer.render(data, settings, on_progress)
+            # Blender without a window (blender -b) shows no partial result: the passes' images
+            # (a copy, a flip and foreach_set each, ~1 ms at 128², competing with the render
+            # threads) would be made for nobody. Cycles updates none there either.
+            image, stats = renderer.render(data, settings, on_progress,
+                                           partial_images=not bpy.app.background)
             for warning in stats.get("warnings", []):
                 self._warn(report, warning)
             if cancelled or stats.get("cancelled") or cancel_requested(self):

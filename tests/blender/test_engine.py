@@ -7,7 +7,7 @@ import time
 import bpy
 import pytest
 
-from bxdf_lab import api, engine, render_report
+from bxdf_lab import api, engine, render_report, renderer
 
 
 @pytest.fixture
@@ -76,3 +76,20 @@ def test_a_finished_render_reports_where_its_time_went(small_scene, material, bx
     assert min(timings["export"], timings["render"], timings["hand_back"]) > 0.0, timings
     assert timings["total"] == pytest.approx(sum(timings[p] for p in engine.PHASES[:-1]), abs=1e-9)
     assert timings["total"] <= operator_seconds
+
+
+def test_blender_without_a_window_asks_for_no_partial_images(small_scene, material, bxdf, monkeypatch):
+    assert bpy.app.background  # the Blender tests run in blender -b
+    api.assign(material, "lambertian")
+    small_scene.bxdf_lab_render.samples = 16  # several passes
+    asked = []
+    real_render = renderer.render
+
+    def render(scene_data, settings, on_progress, partial_images=True):
+        asked.append(partial_images)
+        return real_render(scene_data, settings, on_progress, partial_images)
+
+    monkeypatch.setattr(renderer, "render", render)
+    bpy.ops.render.render(write_still=True)
+    assert asked == [False] and engine.last_error == ""
+    assert os.path.exists(small_scene.render.filepath)

@@ -335,6 +335,21 @@ def test_progress_reports_tiles_and_partial_images():
     assert partial and all(p.shape == image.shape and p.dtype == np.float32 for p in partial)
 
 
+def test_without_partial_images_progress_gets_none_and_the_image_is_the_same():
+    material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.5}}
+    settings = dict(BIG, samples=4, tile_size=8)
+    with_partial, without = [], []
+    expected = bxdf.render(scene_dict(material), settings,
+                           lambda done, total, img: with_partial.append(img))
+    image = bxdf.render(scene_dict(material), settings,
+                        lambda done, total, img: without.append((done, total, img)),
+                        partial_images=False)
+    assert any(img is not None for img in with_partial)
+    assert without and all(img is None for _, _, img in without)
+    assert without[-1][:2] == (4 * 9, 4 * 9)  # tile progress still arrives, to the end
+    np.testing.assert_array_equal(image, expected)
+
+
 class Boom(Exception):
     pass
 
