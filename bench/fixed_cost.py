@@ -38,17 +38,20 @@ def parse_args():
     return args
 
 
-def timed_render(engine, spec, spp, seed, threads):
-    """Renders once (no file); returns the operator's seconds."""
+def timed_render(engine, spec, spp, seed, threads, cpu_seconds=None):
+    """Renders once (no file); returns the operator's seconds, and appends the process's CPU
+    seconds (all threads) to `cpu_seconds` when given."""
     import bpy
 
     from compare import driver, engine_setup
 
     configure = engine_setup.configure_cycles if engine == "CYCLES" else engine_setup.configure_bxdf_lab
     configure(spec, spp, seed, threads)
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), time.process_time()
     bpy.ops.render.render(write_still=False)
     seconds = time.perf_counter() - start
+    if cpu_seconds is not None:
+        cpu_seconds.append(time.process_time() - cpu_start)
     driver.raise_engine_error(engine, seed)
     return seconds
 
@@ -67,8 +70,9 @@ def main():
     phases = {p: [] for p in engine.PHASES + ("blender", "operator")}
     cycles = []
     doubled = {"BXDF_LAB": [], "CYCLES": []}  # the operator's seconds at 2 spp
+    cpu = {"BXDF_LAB": [], "CYCLES": []}  # the process's CPU seconds at spp
     for r in range(args.renders):
-        seconds = timed_render("BXDF_LAB", spec, args.spp, r, args.threads)
+        seconds = timed_render("BXDF_LAB", spec, args.spp, r, args.threads, cpu["BXDF_LAB"])
         timings = render_report.last("render").timings
         if not timings:
             raise RuntimeError(f"BXDF_LAB render {r} recorded no timings (cancelled or failed?)")
@@ -76,7 +80,7 @@ def main():
             phases[p].append(timings[p])
         phases["blender"].append(seconds - timings["total"])
         phases["operator"].append(seconds)
-        cycles.append(timed_render("CYCLES", spec, args.spp, r, args.threads))
+        cycles.append(timed_render("CYCLES", spec, args.spp, r, args.threads, cpu["CYCLES"]))
         for name in doubled:
             doubled[name].append(timed_render(name, spec, 2 * args.spp, r, args.threads))
 
@@ -92,7 +96,9 @@ def main():
     print(f"{2 * args.spp} spp ms: BXDF_LAB {ms(doubled['BXDF_LAB']):.1f}, CYCLES "
           f"{ms(doubled['CYCLES']):.1f}; fixed cost 2 T({args.spp}) - T({2 * args.spp}): "
           f"BXDF_LAB {fixed['BXDF_LAB']:.1f}, CYCLES {fixed['CYCLES']:.1f}")
-    print(f"BXDF_LAB / CYCLES (operator): {statistics.median(phases['operator']) / statistics.median(cycles):.2f}")
+    print(f"BXDF_LAB / CYCLES (operator): {statistics.median(phases['operator']) / statistics.median(cycles):.2f}; "
+          f"process CPU ms (steadier on a shared machine): BXDF_LAB {ms(cpu['BXDF_LAB']):.1f}, "
+          f"CYCLES {ms(cpu['CYCLES']):.1f}")
 
 
 if __name__ == "__main__":

@@ -54,13 +54,16 @@ def _matrix(m):
 def _fan_corners(loop_start, loop_total):
     """Loop indices (T, 3) and polygon index (T,) of each triangle of a mesh whose polygons are
     triangles and quads, in Blender's own order and split: a quad (0, 1, 2, 3) becomes
-    (0, 1, 2), (0, 2, 3), as Blender's loop triangles do (checked by tests/blender/test_export.py)."""
-    per_polygon = loop_total - 2
-    triangle_polygon = np.repeat(np.arange(len(loop_start), dtype=np.int32), per_polygon)
-    first = np.cumsum(per_polygon) - per_polygon  # index of each polygon's first triangle
-    k = np.arange(len(triangle_polygon), dtype=np.int32) - np.repeat(first, per_polygon).astype(np.int32)
-    start = loop_start[triangle_polygon]
-    corners = np.stack([start, start + k + 1, start + k + 2], axis=1)
+    (0, 1, 2), (0, 2, 3), as Blender's loop triangles do (checked by tests/blender/test_export.py).
+    Written into one int32 array: each temporary of a triangle's length is fresh memory to fault
+    in, which costs more than the arithmetic."""
+    triangle_polygon = np.repeat(np.arange(len(loop_start), dtype=np.int32), loop_total - 2)
+    corners = np.empty((len(triangle_polygon), 3), dtype=np.int32)
+    np.take(loop_start, triangle_polygon, out=corners[:, 0])
+    np.add(corners[:, 0], 1, out=corners[:, 1])
+    # A quad's second triangle (one after a triangle of the same polygon) starts at its corner 2.
+    corners[1:, 1] += triangle_polygon[1:] == triangle_polygon[:-1]
+    np.add(corners[:, 1], 1, out=corners[:, 2])
     return corners, triangle_polygon
 
 
