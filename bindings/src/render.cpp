@@ -8,6 +8,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -38,6 +39,21 @@ py::array_t<float> image_array(const float* rgba, int width, int height, bool bo
   for (int y = 0; y < height; ++y)
     std::memcpy(out + row * static_cast<size_t>(y), rgba + row * static_cast<size_t>(bottom_up ? height - 1 - y : y),
                 row * sizeof(float));
+  return image;
+}
+
+// The film's image as a (height, width, 4) float32 array, written straight into the array (no
+// intermediate copy: a fresh image-sized buffer is memory to fault in), flipped in place when
+// bottom_up.
+py::array_t<float> image_array(const render::Film& film, bool bottom_up) {
+  py::array_t<float> image({film.height(), film.width(), 4});
+  float* out = image.mutable_data();
+  film.rgba(out);
+  if (bottom_up) {
+    const size_t row = static_cast<size_t>(film.width()) * 4;
+    for (size_t top = 0, bottom = static_cast<size_t>(film.height()) - 1; top < bottom; ++top, --bottom)
+      std::swap_ranges(out + row * top, out + row * (top + 1), out + row * bottom);
+  }
   return image;
 }
 
@@ -185,9 +201,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
   if (python_error) throw std::move(*python_error);
   if (render_error) std::rethrow_exception(render_error);
 
-  std::vector<float> rgba(static_cast<size_t>(film.width()) * static_cast<size_t>(film.height()) * 4);
-  film.rgba(rgba.data());
-  py::array_t<float> image = image_array(rgba.data(), film.width(), film.height(), bottom_up);
+  py::array_t<float> image = image_array(film, bottom_up);
   if (!return_stats) return std::move(image);
   py::dict s;
   s["seconds"] = stats.seconds;

@@ -173,6 +173,12 @@ def test_row_order_and_bottom_up():
     np.testing.assert_array_equal(bottom_up, top_down[::-1])
     lum = top_down[..., :3].sum(-1)
     assert lum[: SIZE // 2].sum() > 2 * lum[SIZE // 2:].sum()
+    # An odd number of rows: the middle row stays where it is.
+    scene["resolution"] = (SIZE, 7)
+    scene["camera"]["resolution"] = (SIZE, 7)
+    top_down = bxdf.render(scene, DIRECT)
+    np.testing.assert_array_equal(bxdf.render(scene, DIRECT, bottom_up=True), top_down[::-1])
+    assert top_down.shape == (7, SIZE, 4) and not np.array_equal(top_down[0], top_down[-1])
 
 
 def rotation(axis, angle):
