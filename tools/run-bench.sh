@@ -62,6 +62,11 @@ for scene in ${SIDE_BY_SIDE_SCENES:-cornell principled_showroom}; do
     --reference-spp 1024 --repeats 3 --json "$BUILD/bench/side_by_side_$scene.json" 2>&1 \
     | grep -E '^(side_by_side|  *spp| +[0-9]+ )' || { echo "run-bench: side_by_side failed on $scene" >&2; exit 1; }
 done
+echo
+echo "== Fixed cost of a render in Blender, cornell at 1 spp (bench/fixed_cost.py, 2 threads each)"
+BXDF_PYTHONPATH="$(pwd)/$BUILD/python" blender -b --factory-startup --python-exit-code 1 \
+  --python bench/fixed_cost.py -- --scene cornell --renders 10 --threads 2 2>&1 \
+  | grep -E '^(fixed_cost|BXDF_LAB|CYCLES|2 spp)' || { echo "run-bench: fixed_cost failed" >&2; exit 1; }
 if command -v blender >/dev/null && [ -d "$BUILD/python" ]; then
   echo
   echo "== HDRI scene: time to equal error against Cycles (bench/hdri_vs_cycles.py)"

@@ -8,6 +8,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -41,6 +42,21 @@ py::array_t<float> image_array(const float* rgba, int width, int height, bool bo
   return image;
 }
 
+// The film's image as a (height, width, 4) float32 array, written straight into the array (no
+// intermediate copy: a fresh image-sized buffer is memory to fault in), flipped in place when
+// bottom_up.
+py::array_t<float> image_array(const render::Film& film, bool bottom_up) {
+  py::array_t<float> image({film.height(), film.width(), 4});
+  float* out = image.mutable_data();
+  film.rgba(out);
+  if (bottom_up) {
+    const size_t row = static_cast<size_t>(film.width()) * 4;
+    for (size_t top = 0, bottom = static_cast<size_t>(film.height()) - 1; top < bottom; ++top, --bottom)
+      std::swap_ranges(out + row * top, out + row * (top + 1), out + row * bottom);
+  }
+  return image;
+}
+
 // Tile progress reaches on_progress at most this often (pass images and the end at once).
 constexpr std::chrono::milliseconds kTileReportInterval(50);
 
@@ -50,6 +66,9 @@ struct Channel {
   std::condition_variable wake;
   uint64_t tiles_done = 0, tiles_total = 0;
   bool tiles_changed = false;
+  // When finished tiles last woke the Python thread: they wake it at most every
+  // kTileReportInterval (its wait times out as often, so no report comes later than that).
+  std::chrono::steady_clock::time_point tiles_woke;
   std::vector<float> pass_image;  // the film after the latest pass not yet handed to Python
   bool pass_ready = false;
   bool finished = false;
@@ -57,7 +76,8 @@ struct Channel {
 
 py::object run_render(const render::Scene& scene, const render::CameraSettings& camera,
                       const render::RenderSettings& settings, const py::object& on_progress, bool bottom_up,
-                      bool return_stats, std::vector<std::string> warnings, py::dict extra_stats) {
+                      bool partial_images, bool return_stats, std::vector<std::string> warnings,
+                      py::dict extra_stats) {
   if (!on_progress.is_none() && !PyCallable_Check(on_progress.ptr()))
     throw ParameterError("on_progress: " + py::repr(on_progress).cast<std::string>() +
                          " is not callable; expected a function (done, total, image_or_None) -> bool, or None");
@@ -70,17 +90,26 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
   render::RenderCallbacks callbacks;
   callbacks.cancel = &cancel;
   callbacks.on_tile = [&](const render::RenderProgress& p) {
+    bool wake = false;
     {
       std::lock_guard<std::mutex> lock(channel.mutex);
       channel.tiles_done = p.tiles_done;
       channel.tiles_total = p.tiles_total;
       channel.tiles_changed = true;
+      // A wake-up per tile (hundreds per pass) made the Python thread take a core from the
+      // render each time, only to find its report interval not yet over and sleep again.
+      const auto now = std::chrono::steady_clock::now();
+      if (now - channel.tiles_woke >= kTileReportInterval) {
+        channel.tiles_woke = now;
+        wake = true;
+      }
     }
-    channel.wake.notify_one();
+    if (wake) channel.wake.notify_one();
     return !cancel.load();
   };
   callbacks.on_pass = [&](const render::Film& film, const render::RenderProgress& p) {
-    if (!has_callback || p.pass >= p.passes) return;  // the last pass's image is the result
+    // The last pass's image is the result; without partial images no pass is copied.
+    if (!has_callback || !partial_images || p.pass >= p.passes) return;
     std::vector<float> rgba(static_cast<size_t>(film.width()) * static_cast<size_t>(film.height()) * 4);
     film.rgba(rgba.data());
     {
@@ -172,9 +201,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
   if (python_error) throw std::move(*python_error);
   if (render_error) std::rethrow_exception(render_error);
 
-  std::vector<float> rgba(static_cast<size_t>(film.width()) * static_cast<size_t>(film.height()) * 4);
-  film.rgba(rgba.data());
-  py::array_t<float> image = image_array(rgba.data(), film.width(), film.height(), bottom_up);
+  py::array_t<float> image = image_array(film, bottom_up);
   if (!return_stats) return std::move(image);
   py::dict s;
   s["seconds"] = stats.seconds;
@@ -191,7 +218,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
   return py::make_tuple(image, s);
 }
 
-constexpr const char* kRenderDoc = R"doc(render(scene, settings=None, on_progress=None, *, bottom_up=False, return_stats=False) -> image or (image, stats)
+constexpr const char* kRenderDoc = R"doc(render(scene, settings=None, on_progress=None, *, bottom_up=False, partial_images=True, return_stats=False) -> image or (image, stats)
 
 Renders ``scene`` with the Embree path tracer and returns a ``(height, width, 4)`` float32 array of
 linear RGBA (alpha 1, or coverage with ``transparent_background``). Rows run top to bottom (numpy's
@@ -244,9 +271,10 @@ only its emission), ``transparent_background`` (False).
 ``on_progress(done, total, image)`` is called on the calling thread, holding the GIL, while the
 render runs on C++ threads: ``done``/``total`` count tiles over the whole render (reported at most
 every 50 ms, and once more at the end with ``done == total``); ``image`` is the
-partial result (same layout as the return value) after each pass but the last, else None. Return
-False to cancel (any other return value, None included, continues). The GIL is released while
-waiting, so other Python threads run.
+partial result (same layout as the return value) after each pass but the last, else None; with
+``partial_images=False`` it is always None and no pass is copied (for a caller that shows no
+partial result). Return False to cancel (any other return value, None included, continues). The
+GIL is released while waiting, so other Python threads run.
 
 Cancelled by on_progress, the render stops within a tile and the image of the finished passes is
 returned (``stats["cancelled"]`` is True). An exception raised in on_progress, or KeyboardInterrupt
@@ -261,7 +289,7 @@ counted once) and ``instances`` (Embree instances), and for :func:`render` ``con
 (reading, welding and flattening the meshes) and ``bvh_seconds`` (building Embree's BVH);
 ``seconds`` is the render alone.)doc";
 
-constexpr const char* kRenderFileDoc = R"doc(render_scene_file(path, settings=None, on_progress=None, *, bottom_up=False, return_stats=False) -> image or (image, stats)
+constexpr const char* kRenderFileDoc = R"doc(render_scene_file(path, settings=None, on_progress=None, *, bottom_up=False, partial_images=True, return_stats=False) -> image or (image, stats)
 
 Renders a JSON scene file of the ``bxdf-render`` CLI (format: plugin/README.md). Its ``"render"``
 object gives the resolution and settings; ``settings`` (same keys as :func:`render`) overrides them.
@@ -281,7 +309,7 @@ void bind_render(py::module_& m) {
   m.def(
       "render",
       [](const py::object& scene, const py::object& settings, const py::object& on_progress, bool bottom_up,
-         bool return_stats) {
+         bool partial_images, bool return_stats) {
         SceneFromPython s = scene_from_python(scene);
         render::RenderSettings rs;
         rs.filter = render::FilterType::BlackmanHarris;  // Cycles' defaults
@@ -293,15 +321,16 @@ void bind_render(py::module_& m) {
         times["convert_seconds"] = s.convert_seconds;
         times["bvh_seconds"] = s.bvh_seconds;
         scene_counts(*s.scene, times);
-        return run_render(*s.scene, s.camera, rs, on_progress, bottom_up, return_stats, std::move(s.warnings), times);
+        return run_render(*s.scene, s.camera, rs, on_progress, bottom_up, partial_images, return_stats,
+                          std::move(s.warnings), times);
       },
       py::arg("scene"), py::arg("settings") = py::none(), py::arg("on_progress") = py::none(), py::kw_only(),
-      py::arg("bottom_up") = false, py::arg("return_stats") = false, kRenderDoc);
+      py::arg("bottom_up") = false, py::arg("partial_images") = true, py::arg("return_stats") = false, kRenderDoc);
 
   m.def(
       "render_scene_file",
       [](const py::object& path, const py::object& settings, const py::object& on_progress, bool bottom_up,
-         bool return_stats) {
+         bool partial_images, bool return_stats) {
         const std::string file = path_argument(path);
         render::LoadedScene loaded;
         {
@@ -311,10 +340,12 @@ void bind_render(py::module_& m) {
         apply_render_settings(settings, loaded.settings);
         py::dict counts;
         scene_counts(*loaded.scene, counts);
-        return run_render(*loaded.scene, loaded.camera, loaded.settings, on_progress, bottom_up, return_stats, {}, counts);
+        return run_render(*loaded.scene, loaded.camera, loaded.settings, on_progress, bottom_up, partial_images,
+                          return_stats, {}, counts);
       },
       py::arg("path"), py::arg("settings") = py::none(), py::arg("on_progress") = py::none(), py::kw_only(),
-      py::arg("bottom_up") = false, py::arg("return_stats") = false, kRenderFileDoc);
+      py::arg("bottom_up") = false, py::arg("partial_images") = true, py::arg("return_stats") = false,
+      kRenderFileDoc);
 }
 
 }  // namespace bxdf::python

@@ -23,6 +23,13 @@ from . import export, render_report, renderer, viewport
 last_error = ""
 last_cancelled = False
 
+# The phases of a render that render_report.Report.timings holds (seconds): the Python-side
+# export of the scene, the module's conversion of it into the renderer's scene (convert) and its
+# BVH build (bvh), the samples (render), and the pixels' way back into Blender's result
+# (hand_back); "total" is the whole of _render, "other" what none of the phases covers (settings,
+# the call into the module, its threads starting, the image coming back from it).
+PHASES = ("export", "convert", "bvh", "render", "hand_back", "other", "total")
+
 
 def cancel_requested(render_engine):
     """Whether the user asked to stop (Esc). One function, so that headless tests, which have no
@@ -37,6 +44,19 @@ def pixels_for_blender(image, width, height):
         raise ValueError(f"renderer returned an image of shape {pixels.shape}, "
                          f"expected {(height, width, 4)}")
     return pixels.reshape(width * height, 4)
+
+
+def _phase_seconds(export_seconds, stats, hand_back_seconds, total_seconds):
+    """Report.timings of a finished render (PHASES) from the engine's clocks and the module's
+    stats (convert_seconds, bvh_seconds, seconds)."""
+    timings = {"export": export_seconds,
+               "convert": float(stats.get("convert_seconds", 0.0)),
+               "bvh": float(stats.get("bvh_seconds", 0.0)),
+               "render": float(stats.get("seconds", 0.0)),
+               "hand_back": hand_back_seconds}
+    timings["other"] = total_seconds - sum(timings.values())
+    timings["total"] = total_seconds
+    return timings
 
 
 class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
@@ -107,14 +127,22 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
 
             settings = renderer.settings_dict(scene.bxdf_lab_render, purpose,
                                               renderer.transparent_max_bounces(scene))
-            image, stats = renderer.render(data, settings, on_progress)
+            # Blender without a window (blender -b) shows no partial result: the passes' images
+            # (a copy, a flip and foreach_set each, ~1 ms at 128², competing with the render
+            # threads) would be made for nobody. Cycles updates none there either.
+            image, stats = renderer.render(data, settings, on_progress,
+                                           partial_images=not bpy.app.background)
             for warning in stats.get("warnings", []):
                 self._warn(report, warning)
             if cancelled or stats.get("cancelled") or cancel_requested(self):
                 cancelled = True
             else:
+                hand_back_started = time.perf_counter()
                 combined.rect.foreach_set(pixels_for_blender(image, width, height))
                 self.update_progress(1.0)
+                report.timings = _phase_seconds(export_seconds, stats,
+                                                time.perf_counter() - hand_back_started,
+                                                time.perf_counter() - started)
                 report.summary = (f"{width}×{height} pixels, {stats.get('samples_per_pixel', 0)} "
                                   f"samples per pixel: export {export_seconds:.2f} s, render "
                                   f"{stats.get('seconds', 0.0):.2f} s")

@@ -54,24 +54,36 @@ def _matrix(m):
 def _fan_corners(loop_start, loop_total):
     """Loop indices (T, 3) and polygon index (T,) of each triangle of a mesh whose polygons are
     triangles and quads, in Blender's own order and split: a quad (0, 1, 2, 3) becomes
-    (0, 1, 2), (0, 2, 3), as Blender's loop triangles do (checked by tests/blender/test_export.py)."""
-    per_polygon = loop_total - 2
-    triangle_polygon = np.repeat(np.arange(len(loop_start), dtype=np.int32), per_polygon)
-    first = np.cumsum(per_polygon) - per_polygon  # index of each polygon's first triangle
-    k = np.arange(len(triangle_polygon), dtype=np.int32) - np.repeat(first, per_polygon).astype(np.int32)
-    start = loop_start[triangle_polygon]
-    corners = np.stack([start, start + k + 1, start + k + 2], axis=1)
+    (0, 1, 2), (0, 2, 3), as Blender's loop triangles do (checked by tests/blender/test_export.py).
+    Written into one int32 array: each temporary of a triangle's length is fresh memory to fault
+    in, which costs more than the arithmetic."""
+    triangle_polygon = np.repeat(np.arange(len(loop_start), dtype=np.int32), loop_total - 2)
+    corners = np.empty((len(triangle_polygon), 3), dtype=np.int32)
+    np.take(loop_start, triangle_polygon, out=corners[:, 0])
+    np.add(corners[:, 0], 1, out=corners[:, 1])
+    # A quad's second triangle (one after a triangle of the same polygon) starts at its corner 2.
+    corners[1:, 1] += triangle_polygon[1:] == triangle_polygon[:-1]
+    np.add(corners[:, 1], 1, out=corners[:, 2])
     return corners, triangle_polygon
 
 
+def _indices(collection, prop, count):
+    """An index property of every element (loops' vertex_index, polygons' loop_start, ...) as
+    int32. Read into uint32, the type these properties have in Blender 3.4: foreach_get then
+    copies without converting (the raw array of polygons and loops, 15x faster than into int32;
+    loop triangles 3-6x), where an int32 buffer makes it convert element by element. Viewed as
+    int32 without a copy (Blender's indices are below 2^31)."""
+    out = np.empty(count, dtype=np.uint32)
+    collection.foreach_get(prop, out)
+    return out.view(np.int32)
+
+
 def _loop_triangle_corners(mesh):
-    """The general (slower, RNA per element) path for meshes with n-gons: Blender's own
-    triangulation of each polygon."""
+    """The general path for meshes with n-gons: Blender's own triangulation of each polygon
+    (loop_triangles are not a raw array: slower per element than the polygon arrays)."""
     n_triangles = len(mesh.loop_triangles)
-    corners = np.empty(n_triangles * 3, dtype=np.int32)
-    mesh.loop_triangles.foreach_get("loops", corners)
-    triangle_polygon = np.empty(n_triangles, dtype=np.int32)
-    mesh.loop_triangles.foreach_get("polygon_index", triangle_polygon)
+    corners = _indices(mesh.loop_triangles, "loops", n_triangles * 3)
+    triangle_polygon = _indices(mesh.loop_triangles, "polygon_index", n_triangles)
     return corners.reshape(n_triangles, 3), triangle_polygon
 
 
@@ -80,14 +92,11 @@ def mesh_arrays(mesh):
     n_vertices, n_polygons, n_loops = len(mesh.vertices), len(mesh.polygons), len(mesh.loops)
     positions = np.empty(n_vertices * 3, dtype=np.float32)
     mesh.vertices.foreach_get("co", positions)
-    loop_vertex = np.empty(n_loops, dtype=np.int32)
-    mesh.loops.foreach_get("vertex_index", loop_vertex)
-    loop_start = np.empty(n_polygons, dtype=np.int32)
-    mesh.polygons.foreach_get("loop_start", loop_start)
-    loop_total = np.empty(n_polygons, dtype=np.int32)
-    mesh.polygons.foreach_get("loop_total", loop_total)
+    loop_vertex = _indices(mesh.loops, "vertex_index", n_loops)
+    loop_start = _indices(mesh.polygons, "loop_start", n_polygons)
+    loop_total = _indices(mesh.polygons, "loop_total", n_polygons)
     # Polygon arrays are raw memory (fast); loop_triangles go through RNA per element (about
-    # 1 s per million triangles), so triangles and quads are split here and only n-gons use them.
+    # 0.25 s per million triangles), so triangles and quads are split here and only n-gons use them.
     if n_polygons == 0 or loop_total.max() <= 4:
         corners, triangle_polygon = _fan_corners(loop_start, loop_total)
     else:

@@ -7,8 +7,12 @@ Per mesh, for the UV maps its materials' graphs read: "uv_maps", a list aligned 
 "uv_map_names" ("" = the mesh's active render map) of per-corner UVs ((T·3, 2) float32; zeros
 where the mesh has no such map, as Cycles reads (0, 0)); "tangents", aligned the same way, None or,
 for a map a Normal Map reads, per-corner (T·3, 4) float32: the object-space tangent and the
-bitangent sign from `mesh.calc_tangents`; and "texture_space" ((2, 3) float32: location, size):
-Cycles' generated coordinates are (P_object − location) / (2·size) + 0.5.
+bitangent sign from `mesh.calc_tangents`; both lists are empty when no graph reads a UV map, and
+a map no graph reads is zeros. "texture_space" ((2, 3) float32: location, size): Cycles'
+generated coordinates are (P_object − location) / (2·size) + 0.5.
+
+The scene's "closure_budget" is Cycles' closure slots per shader, None when no material renders
+from nodes (nothing to budget).
 """
 
 import numpy as np
@@ -17,10 +21,17 @@ from . import nodes
 from .nodes import closure_budget, registry_params
 
 
+def _maps_read(translation):
+    """The graph's indices of the UV maps its nodes read (UV coordinates, normal-map tangents)."""
+    return {n.get("map", 0) for n in translation.graph.nodes if n["op"] in ("uv", "normal_map")}
+
+
 class NodeMaterials:
     def __init__(self):
         self.translations = []   # (entry dict, Translation) of the materials rendered from nodes
-        self.cycles_only = []    # Translations of model materials: only Cycles' budget needs them
+        # Model materials with node trees: only Cycles' closure budget needs them, and only when
+        # some material renders from nodes; finish() translates them then.
+        self.cycles_only = []
 
     def entry(self, material):
         """The scene material of a node-tree material (its graph is filled in by finish())."""
@@ -33,7 +44,7 @@ class NodeMaterials:
         """A material rendered from its BxDF Lab model still has a node tree that Cycles renders
         (a comparison's set-up): it sizes Cycles' closure budget like any other."""
         if material.use_nodes and material.node_tree is not None:
-            self.cycles_only.append(nodes.translate(material))
+            self.cycles_only.append(material)
 
     def _translation(self, material):
         return next((t for _, t in self.translations if t.material == material), None)
@@ -49,8 +60,11 @@ class NodeMaterials:
             translation = self._translation(material) if material is not None else None
             if translation is None or corners is None:
                 continue
-            tangent_maps = {n["map"] for n in translation.graph.nodes if n["op"] == "normal_map"}
+            tangent_maps = {n.get("map", 0) for n in translation.graph.nodes if n["op"] == "normal_map"}
+            read = _maps_read(translation)
             for index, name in enumerate(translation.uv_maps):
+                if index not in read:
+                    continue  # not read by the graph (the active render map "" always has an index)
                 if name in out["uv_layers"] and (index not in tangent_maps or
                                                  "tangents" in (out["uv_layers"][name] or {})):
                     continue
@@ -95,7 +109,9 @@ class NodeMaterials:
         """Applies Cycles' closure budget, fills each entry's graph, aligns the meshes' UV maps
         with the scene's "uv_map_names" and adds the translations' warnings."""
         translations = [t for _, t in self.translations]
-        budget = closure_budget.scene_budget(translations + self.cycles_only)
+        # Without node materials no graph has closures to budget (None says so).
+        budget = (closure_budget.scene_budget(
+            translations + [nodes.translate(m) for m in self.cycles_only]) if translations else None)
         names = [""] + sorted({n for t in translations for n in t.uv_maps} - {""})
         for entry, translation in self.translations:
             closure_budget.apply(translation, budget)
@@ -111,12 +127,15 @@ class NodeMaterials:
                     translation.warn(None, (), f"model '{model}' is not in this build of bxdf "
                                      "(bxdf.models()); the renderer cannot render it")
             scene_data["warnings"].extend(translation.warnings)
+        # Per-corner UV maps only when a graph reads one: without, a mesh carries none (zeros
+        # per corner for every mesh would be copied and stored for nothing).
+        any_read = any(_maps_read(t) for t in translations)
         for mesh in scene_data["meshes"]:
             layers = mesh.pop("uv_layers", {})
             corners = 3 * len(mesh["triangles"])
             mesh["uv_maps"] = [layers[n]["uvs"] if layers.get(n) else
-                               np.zeros((corners, 2), dtype=np.float32) for n in names]
-            mesh["tangents"] = [(layers.get(n) or {}).get("tangents") for n in names]
+                               np.zeros((corners, 2), dtype=np.float32) for n in names] if any_read else []
+            mesh["tangents"] = [(layers.get(n) or {}).get("tangents") for n in names] if any_read else []
         scene_data["uv_map_names"] = names
         scene_data["closure_budget"] = budget
 

@@ -27,6 +27,9 @@ class Report:
     errors: list = field(default_factory=list)
     cancelled: bool = False
     finished: float = field(default_factory=time.time)
+    # Seconds per phase of a finished render (engine.PHASES), for benchmarks and the curious:
+    # where a render's time goes besides the samples.
+    timings: dict = field(default_factory=dict)
 
     def messages(self):
         """[(level, text)]: errors first."""

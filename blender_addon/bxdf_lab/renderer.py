@@ -60,11 +60,13 @@ def settings_dict(render_settings, purpose="final",
     return settings
 
 
-def render(scene_data, settings, on_progress):
+def render(scene_data, settings, on_progress, partial_images=True):
     """Renders `scene_data` with `settings` (settings_dict's); returns ((height, width, 4) float32
-    image with rows bottom-up, stats dict with "cancelled", "warnings", "seconds", ...)."""
+    image with rows bottom-up, stats dict with "cancelled", "warnings", "seconds", ...).
+    `on_progress` gets the image after each pass but the last when `partial_images`, else None."""
     render_fn = binding()
     settings = dict(settings)
     # Film › Transparent, as Cycles: camera rays that miss get no world and alpha 0.
     settings["transparent_background"] = bool(scene_data.get("film_transparent", False))
-    return render_fn(scene_data, settings, on_progress, bottom_up=True, return_stats=True)
+    return render_fn(scene_data, settings, on_progress, bottom_up=True,
+                     partial_images=partial_images, return_stats=True)

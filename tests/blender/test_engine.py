@@ -2,11 +2,12 @@
 failed render writes no file."""
 
 import os
+import time
 
 import bpy
 import pytest
 
-from bxdf_lab import api, engine
+from bxdf_lab import api, engine, render_report, renderer
 
 
 @pytest.fixture
@@ -58,3 +59,37 @@ def test_render_settings_live_on_the_scene(small_scene):
             settings.seed) == (64, 8, "BLACKMAN_HARRIS", 0, 0)
     with pytest.raises(TypeError):
         settings.pixel_filter = "NO_SUCH_FILTER"
+
+
+def test_a_finished_render_reports_where_its_time_went(small_scene, material, bxdf):
+    assert hasattr(bxdf, "render"), "this build of bxdf has no renderer"
+    api.assign(material, "lambertian")
+    small_scene.bxdf_lab_render.samples = 2
+    started = time.perf_counter()
+    bpy.ops.render.render(write_still=False)
+    operator_seconds = time.perf_counter() - started
+    timings = render_report.last("render").timings
+    assert tuple(timings) == engine.PHASES
+    # Each phase is a part of the engine's render, and the parts add up to it.
+    for phase in engine.PHASES:
+        assert timings[phase] >= -1e-4, (phase, timings)
+    assert min(timings["export"], timings["render"], timings["hand_back"]) > 0.0, timings
+    assert timings["total"] == pytest.approx(sum(timings[p] for p in engine.PHASES[:-1]), abs=1e-9)
+    assert timings["total"] <= operator_seconds
+
+
+def test_blender_without_a_window_asks_for_no_partial_images(small_scene, material, bxdf, monkeypatch):
+    assert bpy.app.background  # the Blender tests run in blender -b
+    api.assign(material, "lambertian")
+    small_scene.bxdf_lab_render.samples = 16  # several passes
+    asked = []
+    real_render = renderer.render
+
+    def render(scene_data, settings, on_progress, partial_images=True):
+        asked.append(partial_images)
+        return real_render(scene_data, settings, on_progress, partial_images)
+
+    monkeypatch.setattr(renderer, "render", render)
+    bpy.ops.render.render(write_still=True)
+    assert asked == [False] and engine.last_error == ""
+    assert os.path.exists(small_scene.render.filepath)

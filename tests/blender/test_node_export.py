@@ -7,7 +7,7 @@ import bpy
 import numpy as np
 import pytest
 
-from bxdf_lab import engine, export
+from bxdf_lab import api, engine, export
 from test_nodes import Tree
 from test_render import _render, _scene, bxdf_render  # noqa: F401 (a fixture)
 
@@ -71,6 +71,39 @@ def test_uv_maps_tangents_and_texture_space_follow_the_graph():
     nm = next(n for n in entry["graph"]["nodes"] if n["op"] == "normal_map")
     assert data["uv_map_names"][nm["map"]] == "Detail"
     assert set(entry) == {"name", "graph"}
+
+
+def test_meshes_carry_no_uv_maps_when_no_graph_reads_one():
+    tree = Tree("plain")
+    tree.surface(tree.add("ShaderNodeBsdfDiffuse"))
+    _plane(tree.material)
+    data = _export()
+    (mesh,) = data["meshes"]
+    assert mesh["uv_maps"] == [] and mesh["tangents"] == []
+    assert data["uv_map_names"] == [""] and data["closure_budget"] == 1  # one diffuse closure
+
+
+def test_a_uv_map_no_graph_reads_is_zeros():
+    tree = Tree("detail only")
+    diffuse = tree.surface(tree.add("ShaderNodeBsdfDiffuse"))
+    _image_through(tree, "ShaderNodeUVMap", "Detail", diffuse.inputs["Color"])
+    plane = _plane(tree.material)
+    data = _export()
+    (mesh,) = data["meshes"]
+    render_map, detail = mesh["uv_maps"]  # the render map "" is not read: the graph names "Detail"
+    np.testing.assert_array_equal(render_map, np.zeros((6, 2)))
+    np.testing.assert_array_equal(
+        detail, np.array([l.uv for l in plane.data.uv_layers["Detail"].data])[mesh["uv_indices"].ravel()])
+
+
+def test_model_materials_alone_have_no_closure_budget():
+    material = bpy.data.materials.new("model")
+    material.use_nodes = True  # a node tree that only Cycles would render
+    api.assign(material, "lambertian")
+    _plane(material)
+    data = _export()
+    assert data["closure_budget"] is None
+    assert data["meshes"][0]["uv_maps"] == []
 
 
 def test_a_uv_map_the_mesh_lacks_is_a_warning():

@@ -173,6 +173,12 @@ def test_row_order_and_bottom_up():
     np.testing.assert_array_equal(bottom_up, top_down[::-1])
     lum = top_down[..., :3].sum(-1)
     assert lum[: SIZE // 2].sum() > 2 * lum[SIZE // 2:].sum()
+    # An odd number of rows: the middle row stays where it is.
+    scene["resolution"] = (SIZE, 7)
+    scene["camera"]["resolution"] = (SIZE, 7)
+    top_down = bxdf.render(scene, DIRECT)
+    np.testing.assert_array_equal(bxdf.render(scene, DIRECT, bottom_up=True), top_down[::-1])
+    assert top_down.shape == (7, SIZE, 4) and not np.array_equal(top_down[0], top_down[-1])
 
 
 def rotation(axis, angle):
@@ -333,6 +339,21 @@ def test_progress_reports_tiles_and_partial_images():
     assert dones == sorted(dones) and dones[-1] == 4 * 9
     partial = [img for _, _, img in calls if img is not None]
     assert partial and all(p.shape == image.shape and p.dtype == np.float32 for p in partial)
+
+
+def test_without_partial_images_progress_gets_none_and_the_image_is_the_same():
+    material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.5}}
+    settings = dict(BIG, samples=4, tile_size=8)
+    with_partial, without = [], []
+    expected = bxdf.render(scene_dict(material), settings,
+                           lambda done, total, img: with_partial.append(img))
+    image = bxdf.render(scene_dict(material), settings,
+                        lambda done, total, img: without.append((done, total, img)),
+                        partial_images=False)
+    assert any(img is not None for img in with_partial)
+    assert without and all(img is None for _, _, img in without)
+    assert without[-1][:2] == (4 * 9, 4 * 9)  # tile progress still arrives, to the end
+    np.testing.assert_array_equal(image, expected)
 
 
 class Boom(Exception):
