@@ -77,6 +77,12 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
           break;
         }
         const TexelFootprint footprint = texture.footprint(uv.x, uv.y);
+        if (node.texture_group >= 0) {
+          const size_t at = size_t(node.group_first);
+          texture_groups[size_t(node.texture_group)]->lookup(footprint, &group_unassociate[at],
+                                                              &group_outputs[at], r);
+          break;
+        }
         for (int k = 0; k < node.group_count; ++k) {
           const GraphNode& member = nodes[size_t(image_groups[size_t(node.group_first + k)])];
           textures[size_t(member.index)]->lookup(footprint, member.flag, r + member.out);
@@ -186,9 +192,13 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
 
 void MaterialGraph::group_images() {
   image_groups.clear();
+  group_unassociate.clear();
+  group_outputs.clear();
+  texture_groups.clear();
   for (GraphNode& node : nodes) {
     node.group_first = node.group_count = 0;
     node.grouped = false;
+    node.texture_group = -1;
   }
   for (size_t i = 0; i < nodes.size(); ++i) {
     GraphNode& first = nodes[i];
@@ -211,6 +221,17 @@ void MaterialGraph::group_images() {
     first.group_count = int(group.size());
     for (size_t k = 1; k < group.size(); ++k) nodes[size_t(group[k])].grouped = true;
     image_groups.insert(image_groups.end(), group.begin(), group.end());
+    std::vector<const Texture*> images;
+    for (int j : group) {
+      const GraphNode& member = nodes[size_t(j)];
+      images.push_back(textures[size_t(member.index)].get());
+      group_unassociate.push_back(member.flag ? 1 : 0);
+      group_outputs.push_back(member.out);
+    }
+    if (auto interleaved = TextureGroup::make(images)) {
+      first.texture_group = int(texture_groups.size());
+      texture_groups.push_back(std::move(interleaved));
+    }
   }
 }
 

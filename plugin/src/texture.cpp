@@ -8,20 +8,12 @@
 #include <cstring>
 
 #include "bxdf/params.h"
+#include "texel_reads.h"
 
 namespace bxdf::render {
 
 namespace {
 
-// Four channels as one SIMD value (GCC/Clang vector extensions: SSE on x86-64, scalar code
-// elsewhere). The arithmetic is Cycles' own, channel by channel and in its order, so a lookup
-// is the same float result as the scalar formula; only the instructions are fewer.
-typedef float Float4 __attribute__((vector_size(16)));
-typedef int32_t Int4 __attribute__((vector_size(16)));
-typedef unsigned char Byte4 __attribute__((vector_size(4)));
-
-Float4 splat4(float v) { return Float4{v, v, v, v}; }
-RGBA to_rgba(Float4 c) { return {c[0], c[1], c[2], c[3]}; }
 
 // Cycles' frac(): the integer part towards −∞ (float_to_int truncates, hence the correction).
 float frac(float x, int* ix) {
@@ -39,36 +31,6 @@ int wrap_repeat(int x, int width) {
 }
 int wrap_clamp(int x, int width) { return x < 0 ? 0 : (x > width - 1 ? width - 1 : x); }
 
-// The three storages, read as Cycles reads them (bytes as byte · (1/255)).
-struct FloatTexels {
-  const TexelGrid& g;
-  Float4 operator[](size_t i) const {
-    const RGBA& t = g.texels[i];
-    return Float4{t.r, t.g, t.b, t.a};
-  }
-};
-struct ByteTexels {
-  const TexelGrid& g;
-  Float4 operator[](size_t i) const {
-    Byte4 b;
-    std::memcpy(&b, g.bytes[i].data(), sizeof b);
-    return __builtin_convertvector(b, Float4) * splat4(1.0f / 255.0f);
-  }
-};
-struct GreyByteTexels {
-  const TexelGrid& g;
-  Float4 operator[](size_t i) const {
-    const float v = float(g.grey_bytes[i]) * (1.0f / 255.0f);
-    return Float4{v, v, v, 1.0f};
-  }
-};
-
-// Texel (x, y), or zero outside the grid (only Clip reaches outside).
-template <class Texels>
-Float4 read_clip(const TexelGrid& g, const Texels& t, int x, int y) {
-  if (x < 0 || x >= g.width || y < 0 || y >= g.height) return Float4{};
-  return t[size_t(y) * size_t(g.width) + size_t(x)];
-}
 
 // Texel indices of the footprint of a linear (n = 2) or cubic (n = 4) lookup along one axis:
 // from ix − 1 (cubic) or ix (linear), each wrapped as the extension says. False when Clip
@@ -168,46 +130,11 @@ const SrgbTable& srgb_table() {
   return table;
 }
 
-// Texel (i, j) of the footprint: unchecked when all of it is inside the grid, else zero
-// outside (only Clip reaches outside).
-template <bool kInside, class Texels>
-Float4 footprint_texel(const TexelGrid& g, const Texels& t, const TexelFootprint& f, int i, int j) {
-  if constexpr (kInside) return t[f.rows[j] + size_t(f.xs[i])];
-  else return read_clip(g, t, f.xs[i], f.ys[j]);
-}
-
-// The weighted sum of the footprint's texels, in Cycles' order (bilinear: the two rows'
-// pairs, then their sum; cubic: each row, then the rows).
-template <bool kInside, class Texels>
-Float4 gather(const TexelGrid& g, const Texels& t, const TexelFootprint& f) {
-  auto at = [&](int i, int j) { return footprint_texel<kInside>(g, t, f, i, j); };
-  switch (f.n) {
-    case 0: return Float4{};
-    case 1: return at(0, 0);
-    case 2:
-      return (at(0, 0) * splat4(f.wy[0] * f.wx[0]) + at(1, 0) * splat4(f.wy[0] * f.wx[1])) +
-             (at(0, 1) * splat4(f.wy[1] * f.wx[0]) + at(1, 1) * splat4(f.wy[1] * f.wx[1]));
-    default: {
-      Float4 out{};
-      for (int j = 0; j < 4; ++j) {
-        Float4 row{};
-        for (int i = 0; i < 4; ++i) row += at(i, j) * splat4(f.wx[i]);
-        out += row * splat4(f.wy[j]);
-      }
-      return out;
-    }
-  }
-}
-
-template <class Texels>
-Float4 gather(const TexelGrid& g, const Texels& t, const TexelFootprint& f) {
-  return f.inside ? gather<true>(g, t, f) : gather<false>(g, t, f);
-}
 
 Float4 gather_grid(const TexelGrid& g, const TexelFootprint& f) {
-  if (!g.grey_bytes.empty()) return gather(g, GreyByteTexels{g}, f);
-  if (!g.bytes.empty()) return gather(g, ByteTexels{g}, f);
-  return gather(g, FloatTexels{g}, f);
+  if (!g.grey_bytes.empty()) return gather(g.width, g.height, GreyByteTexels{g}, f);
+  if (!g.bytes.empty()) return gather(g.width, g.height, ByteTexels{g}, f);
+  return gather(g.width, g.height, FloatTexels{g}, f);
 }
 
 }  // namespace
@@ -275,7 +202,12 @@ namespace {
 Float4 image_node_lookup(const TextureSettings& s, const TexelGrid& grid,
                          const TexelFootprint& footprint, bool unassociate) {
   if (s.missing) return Float4{1.0f, 0.0f, 1.0f, 1.0f};  // Cycles' TEX_IMAGE_MISSING
-  Float4 c = gather_grid(grid, footprint);
+  return image_node_convert(s, gather_grid(grid, footprint), unassociate);
+}
+
+}  // namespace
+
+Float4 image_node_convert(const TextureSettings& s, Float4 c, bool unassociate) {
   const float alpha = c[3];
   if (unassociate && alpha != 1.0f && alpha != 0.0f) {
     c *= splat4(1.0f / alpha);
@@ -289,8 +221,6 @@ void store_node_outputs(Float4 c, Vec3* out) {
   out[0] = Vec3(c[0], c[1], c[2]);
   out[1] = Vec3(c[3], c[3], c[3]);
 }
-
-}  // namespace
 
 TexelFootprint Texture::footprint(float u, float v) const {
   return texel_footprint(grid_.width, grid_.height, settings_.interpolation, settings_.extension,

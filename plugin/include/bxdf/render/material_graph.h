@@ -14,6 +14,7 @@
 #include "bxdf/bsdf.h"
 #include "bxdf/registry.h"
 #include "bxdf/render/texture.h"
+#include "bxdf/render/texture_group.h"
 
 namespace bxdf::render {
 
@@ -57,6 +58,7 @@ struct GraphNode {
   // + group_count)); the others are then done (`grouped`).
   int group_first = 0, group_count = 0;
   bool grouped = false;
+  int texture_group = -1;  // the group's interleaved copy (MaterialGraph::texture_groups), or −1
 };
 
 struct GraphClosure {
@@ -121,6 +123,11 @@ class MaterialGraph {
   static constexpr float kBumpOffset = 1e-3f;
 
   std::vector<int> image_groups;
+  // Per entry of image_groups: its node's unassociate flag and first output register; and the
+  // groups stored interleaved (TextureGroup), read in one pass.
+  std::vector<uint8_t> group_unassociate;
+  std::vector<int> group_outputs;
+  std::vector<std::shared_ptr<const TextureGroup>> texture_groups;
   // Forms the image groups once the nodes and textures are final.
   void group_images();
 

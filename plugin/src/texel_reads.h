@@ -1,0 +1,97 @@
+// How texels are read and weighted, shared by single images (texture.cpp) and interleaved
+// image groups (texture_group.cpp): four channels as one SIMD value, the storages' readers,
+// and the weighted sum of a footprint's texels in Cycles' order.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#include "bxdf/render/texture.h"
+
+namespace bxdf::render {
+
+// Four channels as one SIMD value (GCC/Clang vector extensions: SSE on x86-64, scalar code
+// elsewhere). The arithmetic is Cycles' own, channel by channel and in its order, so a lookup
+// is the same float result as the scalar formula; only the instructions are fewer.
+typedef float Float4 __attribute__((vector_size(16)));
+typedef int32_t Int4 __attribute__((vector_size(16)));
+typedef unsigned char Byte4 __attribute__((vector_size(4)));
+
+inline Float4 splat4(float v) { return Float4{v, v, v, v}; }
+inline RGBA to_rgba(Float4 c) { return {c[0], c[1], c[2], c[3]}; }
+
+// The three storages, read as Cycles reads them (bytes as byte · (1/255)).
+struct FloatTexels {
+  const TexelGrid& g;
+  Float4 operator[](size_t i) const {
+    const RGBA& t = g.texels[i];
+    return Float4{t.r, t.g, t.b, t.a};
+  }
+};
+struct ByteTexels {
+  const TexelGrid& g;
+  Float4 operator[](size_t i) const {
+    Byte4 b;
+    std::memcpy(&b, g.bytes[i].data(), sizeof b);
+    return __builtin_convertvector(b, Float4) * splat4(1.0f / 255.0f);
+  }
+};
+struct GreyByteTexels {
+  const TexelGrid& g;
+  Float4 operator[](size_t i) const {
+    const float v = float(g.grey_bytes[i]) * (1.0f / 255.0f);
+    return Float4{v, v, v, 1.0f};
+  }
+};
+
+// Texel (x, y), or zero outside the grid (only Clip reaches outside).
+template <class Texels>
+Float4 read_clip(int width, int height, const Texels& t, int x, int y) {
+  if (x < 0 || x >= width || y < 0 || y >= height) return Float4{};
+  return t[size_t(y) * size_t(width) + size_t(x)];
+}
+
+// Texel (i, j) of the footprint: unchecked when all of it is inside the grid, else zero
+// outside (only Clip reaches outside).
+template <bool kInside, class Texels>
+Float4 footprint_texel(int width, int height, const Texels& t, const TexelFootprint& f, int i,
+                       int j) {
+  if constexpr (kInside) return t[f.rows[j] + size_t(f.xs[i])];
+  else return read_clip(width, height, t, f.xs[i], f.ys[j]);
+}
+
+// The weighted sum of the footprint's texels, in Cycles' order (bilinear: the two rows'
+// pairs, then their sum; cubic: each row, then the rows).
+template <bool kInside, class Texels>
+Float4 gather(int width, int height, const Texels& t, const TexelFootprint& f) {
+  auto at = [&](int i, int j) { return footprint_texel<kInside>(width, height, t, f, i, j); };
+  switch (f.n) {
+    case 0: return Float4{};
+    case 1: return at(0, 0);
+    case 2:
+      return (at(0, 0) * splat4(f.wy[0] * f.wx[0]) + at(1, 0) * splat4(f.wy[0] * f.wx[1])) +
+             (at(0, 1) * splat4(f.wy[1] * f.wx[0]) + at(1, 1) * splat4(f.wy[1] * f.wx[1]));
+    default: {
+      Float4 out{};
+      for (int j = 0; j < 4; ++j) {
+        Float4 row{};
+        for (int i = 0; i < 4; ++i) row += at(i, j) * splat4(f.wx[i]);
+        out += row * splat4(f.wy[j]);
+      }
+      return out;
+    }
+  }
+}
+
+template <class Texels>
+Float4 gather(int width, int height, const Texels& t, const TexelFootprint& f) {
+  return f.inside ? gather<true>(width, height, t, f) : gather<false>(width, height, t, f);
+}
+
+// The image node's conversion of gathered texels: alpha unassociated when asked, then sRGB to
+// linear for sRGB images (Cycles' order).
+Float4 image_node_convert(const TextureSettings& settings, Float4 texels, bool unassociate);
+// The node's outputs as a graph's registers hold them: colour in out[0], alpha in out[1].
+void store_node_outputs(Float4 c, Vec3* out);
+
+}  // namespace bxdf::render

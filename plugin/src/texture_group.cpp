@@ -1,0 +1,102 @@
+#include "bxdf/render/texture_group.h"
+
+#include <cstring>
+
+#include "texel_reads.h"
+
+namespace bxdf::render {
+
+namespace {
+
+// The interleaved records read as each storage reads its own texels (the same floats).
+struct InterleavedFloats {
+  const unsigned char* base;
+  size_t stride;
+  Float4 operator[](size_t i) const {
+    Float4 v;
+    std::memcpy(&v, base + i * stride, sizeof v);
+    return v;
+  }
+};
+struct InterleavedBytes {
+  const unsigned char* base;
+  size_t stride;
+  Float4 operator[](size_t i) const {
+    Byte4 b;
+    std::memcpy(&b, base + i * stride, sizeof b);
+    return __builtin_convertvector(b, Float4) * splat4(1.0f / 255.0f);
+  }
+};
+struct InterleavedGreyBytes {
+  const unsigned char* base;
+  size_t stride;
+  Float4 operator[](size_t i) const {
+    const float v = float(base[i * stride]) * (1.0f / 255.0f);
+    return Float4{v, v, v, 1.0f};
+  }
+};
+
+}  // namespace
+
+std::shared_ptr<const TextureGroup> TextureGroup::make(const std::vector<const Texture*>& images) {
+  if (images.size() < 2) return nullptr;
+  auto group = std::make_shared<TextureGroup>();
+  const TexelGrid& first = images[0]->texels();
+  group->width_ = first.width;
+  group->height_ = first.height;
+  const auto storage_of = [](const TexelGrid& g) {
+    return !g.grey_bytes.empty() ? Storage::GreyByte
+           : !g.bytes.empty()    ? Storage::Byte4
+                                 : Storage::Float;
+  };
+  const auto bytes_of = [](Storage s) {
+    return s == Storage::Float ? sizeof(RGBA) : s == Storage::Byte4 ? size_t(4) : size_t(1);
+  };
+  // Members in the caller's order; within a record floats first, then 4-byte texels, then
+  // single bytes, so that every float stays 4-byte aligned.
+  group->members_.resize(images.size());
+  for (const Storage storage : {Storage::Float, Storage::Byte4, Storage::GreyByte}) {
+    for (size_t k = 0; k < images.size(); ++k) {
+      const TexelGrid& g = images[k]->texels();
+      if (g.width != first.width || g.height != first.height) return nullptr;
+      if (storage_of(g) != storage) continue;
+      group->members_[k] = {storage, group->stride_, images[k]->settings()};
+      group->stride_ += bytes_of(storage);
+    }
+  }
+  group->stride_ = (group->stride_ + 3) & ~size_t(3);
+  const size_t texels = size_t(first.width) * size_t(first.height);
+  if (group->stride_ * texels > kMaxBytes) return nullptr;
+  group->data_.assign(group->stride_ * texels, 0);
+  for (size_t k = 0; k < images.size(); ++k) {
+    const TexelGrid& g = images[k]->texels();
+    const Member& m = group->members_[k];
+    const size_t size = bytes_of(m.storage);
+    const unsigned char* source =
+        m.storage == Storage::Float  ? reinterpret_cast<const unsigned char*>(g.texels.data())
+        : m.storage == Storage::Byte4 ? g.bytes.front().data()
+                                      : g.grey_bytes.data();
+    unsigned char* target = group->data_.data() + m.offset;
+    for (size_t i = 0; i < texels; ++i)
+      std::memcpy(target + i * group->stride_, source + i * size, size);
+  }
+  return group;
+}
+
+void TextureGroup::lookup(const TexelFootprint& f, const uint8_t* unassociate,
+                          const int* outputs, Vec3* registers) const {
+  for (size_t k = 0; k < members_.size(); ++k) {
+    const Member& m = members_[k];
+    const unsigned char* base = data_.data() + m.offset;
+    Float4 c;
+    switch (m.storage) {
+      case Storage::Float: c = gather(width_, height_, InterleavedFloats{base, stride_}, f); break;
+      case Storage::Byte4: c = gather(width_, height_, InterleavedBytes{base, stride_}, f); break;
+      default: c = gather(width_, height_, InterleavedGreyBytes{base, stride_}, f); break;
+    }
+    store_node_outputs(image_node_convert(m.settings, c, unassociate[k] != 0),
+                       registers + outputs[k]);
+  }
+}
+
+}  // namespace bxdf::render
