@@ -15,11 +15,49 @@ bool same_values(const float* rows, int32_t a, int32_t b, int width) {
          std::memcmp(rows + size_t(width) * size_t(a), rows + size_t(width) * size_t(b), sizeof(float) * size_t(width)) == 0;
 }
 
+// Whether an attribute's corners index it exactly as they index the positions (or it is absent).
+bool indexed_like_positions(const int32_t* attribute_indices, const int32_t* triangles, size_t corners) {
+  return !attribute_indices || attribute_indices == triangles ||
+         std::memcmp(attribute_indices, triangles, corners * sizeof(int32_t)) == 0;
+}
+
+// Whether some corner uses each position (welding leaves out the ones none uses).
+bool uses_every_position(const IndexedMeshArrays& in) {
+  std::vector<uint8_t> used(in.num_positions, 0);
+  size_t count = 0;
+  for (size_t c = 0; c < 3 * in.num_triangles; ++c) {
+    uint8_t& u = used[size_t(in.triangles[c])];
+    count += u ^ 1u;
+    u = 1;
+  }
+  return count == in.num_positions;
+}
+
+// The mesh as given, each array copied once: what welding makes of a mesh with nothing to split,
+// but for the order of the vertices (no image depends on it).
+render::Mesh copied_as_is(const IndexedMeshArrays& in) {
+  render::Mesh out;
+  const size_t nv = in.num_positions, corners = 3 * in.num_triangles;
+  out.positions.reserve(3 * nv + 1);  // room for the renderer's padding float (Scene keeps it)
+  out.positions.assign(in.positions, in.positions + 3 * nv);
+  if (in.normals && in.normal_indices) out.normals.assign(in.normals, in.normals + 3 * nv);
+  if (in.uvs && in.uv_indices) out.uvs.assign(in.uvs, in.uvs + 2 * nv);
+  out.indices.assign(in.triangles, in.triangles + corners);  // validated: all >= 0
+  if (in.material_indices) out.material_indices.assign(in.material_indices, in.material_indices + in.num_triangles);
+  return out;
+}
+
 }  // namespace
 
 render::Mesh weld_corners(const IndexedMeshArrays& in) {
-  render::Mesh out;
+  // Blender's smooth meshes without UVs (most of a scene's triangles, often) have their normals
+  // indexed by position: nothing to split, and the per-corner search and its bookkeeping arrays
+  // (fresh memory to fault in) are skipped.
   const size_t corners = 3 * in.num_triangles;
+  if (indexed_like_positions(in.normals ? in.normal_indices : nullptr, in.triangles, corners) &&
+      indexed_like_positions(in.uvs ? in.uv_indices : nullptr, in.triangles, corners) && uses_every_position(in))
+    return copied_as_is(in);
+  render::Mesh out;
   const bool has_normals = in.normals && in.normal_indices;
   const bool has_uvs = in.uvs && in.uv_indices;
   out.indices.resize(corners);

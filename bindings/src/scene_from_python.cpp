@@ -377,8 +377,8 @@ struct MeshInput {
   render::MeshVisibility visibility;
   render::TerminatorOffsets terminator;
   Float32Array positions, normals, uvs;
-  IndexArray triangles, normal_indices, uv_indices;
-  std::vector<uint32_t> materials;
+  IndexArray triangles, normal_indices, uv_indices, material_indices;
+  std::vector<uint32_t> materials;  // when some triangle takes the default material, else empty
   IndexedMeshArrays arrays;
   MeshGraphAttributes graph_attributes;
 };
@@ -424,22 +424,25 @@ MeshInput mesh_from_python(py::handle v, const std::string& path, size_t num_mat
   const bool has_uvs = attribute("uvs", "uv_indices", 2, in.uvs, in.uv_indices);
   if (has_uvs) require_finite(in.uvs.data(), static_cast<size_t>(in.uvs.size()), 2, key_path(path, "uvs"));
 
-  in.materials.assign(static_cast<size_t>(nt), 0);
-  bool needs_default = !has(d, "material_indices");
-  if (!needs_default) {
-    const auto mi = real_array<IndexArray>(d["material_indices"], key_path(path, "material_indices"), {nt}, true);
-    require_indices(mi, -1, static_cast<long long>(num_materials), key_path(path, "material_indices"));
-    for (py::ssize_t t = 0; t < nt; ++t) {
-      if (mi.data()[t] < 0) needs_default = true;
-      else in.materials[t] = static_cast<uint32_t>(mi.data()[t]);
-    }
-    if (needs_default) {
+  // The caller's indices are used in place (int32 >= 0 reads the same as uint32) unless some
+  // triangle has none (-1), which takes the default material in a copy.
+  const uint32_t* materials = nullptr;
+  if (has(d, "material_indices")) {
+    in.material_indices =
+        real_array<IndexArray>(d["material_indices"], key_path(path, "material_indices"), {nt}, true);
+    require_indices(in.material_indices, -1, static_cast<long long>(num_materials), key_path(path, "material_indices"));
+    const int32_t* mi = in.material_indices.data();
+    if (std::any_of(mi, mi + nt, [](int32_t m) { return m < 0; })) {
       const uint32_t fallback = default_material();
-      for (py::ssize_t t = 0; t < nt; ++t)
-        if (mi.data()[t] < 0) in.materials[t] = fallback;
+      in.materials.resize(static_cast<size_t>(nt));
+      for (py::ssize_t t = 0; t < nt; ++t) in.materials[t] = mi[t] < 0 ? fallback : static_cast<uint32_t>(mi[t]);
+      materials = in.materials.data();
+    } else {
+      materials = reinterpret_cast<const uint32_t*>(mi);
     }
   } else {
-    std::fill(in.materials.begin(), in.materials.end(), default_material());
+    in.materials.assign(static_cast<size_t>(nt), default_material());
+    materials = in.materials.data();
   }
 
   in.arrays.positions = in.positions.data();
@@ -454,7 +457,7 @@ MeshInput mesh_from_python(py::handle v, const std::string& path, size_t num_mat
     in.arrays.uvs = in.uvs.data();
     in.arrays.uv_indices = in.uv_indices.data();
   }
-  in.arrays.material_indices = in.materials.data();
+  in.arrays.material_indices = materials;
   in.graph_attributes = mesh_graph_attributes(d, path, static_cast<size_t>(nt));
   return in;
 }

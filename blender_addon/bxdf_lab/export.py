@@ -1,8 +1,9 @@
 """Blender scene → plain data for the renderer: a dict of numpy arrays and small dicts.
 
-Everything leaves Blender through `foreach_get` into numpy arrays of the matching dtype (never raw
-pointers: Blender's mesh layout changes between versions). The result has no bpy objects in it,
-so it can be tested, pickled, or handed to the renderer's binding unchanged.
+Everything leaves Blender through `foreach_get` into numpy arrays of the matching dtype (index
+properties into uint32, their type in Blender 3.4, then viewed as int32; never raw pointers:
+Blender's mesh layout changes between versions). The result has no bpy objects in it, so it can
+be tested, pickled, or handed to the renderer's binding unchanged.
 
     {
       "meshes": [{"name": str,

@@ -65,6 +65,31 @@ def sphere_mesh():
     }
 
 
+def test_a_mesh_with_nothing_to_split_renders_as_welded():
+    """Normals and UVs indexed like the positions (Blender's smooth meshes) leave nothing to weld:
+    the mesh is taken as it is, and renders bit for bit as the same corners welded (forced here
+    by one position no triangle uses), UVs and normals included."""
+    positions, triangles, normals = uv_sphere()
+    uvs = (0.5 + 0.5 * positions[:, :2]).astype(np.float32)  # varies over the sphere
+    shared = {"name": "shared", "positions": positions, "triangles": triangles,
+              "normals": normals, "normal_indices": triangles, "uvs": uvs, "uv_indices": triangles,
+              "material_indices": np.zeros(len(triangles), dtype=np.int32)}
+    unused = np.float32([[9.0, 9.0, 9.0]])
+    welded = dict(shared, positions=np.vstack([unused, positions]), normals=np.vstack([unused, normals]),
+                  uvs=np.vstack([unused[:, :2], uvs]), triangles=triangles + 1)
+    welded["normal_indices"] = welded["uv_indices"] = welded["triangles"]
+    # Reflectance (u, v, 0.5): the image shows the UVs as well as the normals' shading.
+    graph = {"graph": {
+        "nodes": [{"op": "uv"}, {"op": "separate", "vector": {"node": 0}},
+                  {"op": "combine", "x": {"node": 1, "out": "x"}, "y": {"node": 1, "out": "y"}, "z": 0.5}],
+        "closures": [{"model": "lambertian", "params": {"reflectance": {"node": 2, "out": "color"}}}]}}
+    images = [bxdf.render(scene_dict(graph, mesh), DIRECT, return_stats=True) for mesh in (shared, welded)]
+    (image, stats), (expected, expected_stats) = images
+    assert image[..., 0].max() > 0.01 and not np.allclose(image[..., 0], image[..., 1])
+    np.testing.assert_array_equal(image, expected)
+    assert stats["stored_triangles"] == expected_stats["stored_triangles"] == len(triangles)
+
+
 def camera():
     matrix = np.eye(4, dtype=np.float32)
     matrix[2, 3] = CAMERA_Z
