@@ -162,10 +162,7 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    except BaseException:  # noqa: BLE001 - any failure must end Blender with a non-zero code
-        import traceback
-        traceback.print_exc()
-        sys.stdout.flush()
-        os._exit(3)
+    if ROOT not in sys.path:
+        sys.path.insert(0, ROOT)
+    from compare import blender_main
+    blender_main.run(main)

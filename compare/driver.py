@@ -10,7 +10,6 @@ import os
 import shutil
 import sys
 import time
-import traceback
 
 
 def _job_from_argv():
@@ -142,10 +141,9 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    except BaseException:  # noqa: BLE001 - any failure must end Blender with a non-zero code
-        traceback.print_exc()
-        sys.stdout.flush()
-        sys.stderr.flush()
-        os._exit(3)
+    # Run as a script by Blender: the package comes from the repository this file is in.
+    _root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    if _root not in sys.path:
+        sys.path.insert(0, _root)
+    from compare import blender_main
+    blender_main.run(main)

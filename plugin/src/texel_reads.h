@@ -20,29 +20,33 @@ typedef unsigned char Byte4 __attribute__((vector_size(4)));
 inline Float4 splat4(float v) { return Float4{v, v, v, v}; }
 inline RGBA to_rgba(Float4 c) { return {c[0], c[1], c[2], c[3]}; }
 
-// The three storages, read as Cycles reads them (bytes as byte · (1/255)).
-struct FloatTexels {
-  const TexelGrid& g;
-  Float4 operator[](size_t i) const {
-    const RGBA& t = g.texels[i];
-    return Float4{t.r, t.g, t.b, t.a};
-  }
+// The three storages' texels as Cycles reads them (bytes as byte · (1/255)), decoded from their
+// first byte: in an image's own array and in interleaved records alike.
+inline Float4 decode_floats(const unsigned char* p) {
+  Float4 v;
+  std::memcpy(&v, p, sizeof v);  // an RGBA of floats
+  return v;
+}
+inline Float4 decode_bytes(const unsigned char* p) {
+  Byte4 b;
+  std::memcpy(&b, p, sizeof b);
+  return __builtin_convertvector(b, Float4) * splat4(1.0f / 255.0f);
+}
+inline Float4 decode_grey_byte(const unsigned char* p) {
+  const float v = float(*p) * (1.0f / 255.0f);
+  return Float4{v, v, v, 1.0f};
+}
+
+// Texel i of a storage whose texels lie `stride` bytes apart from `base` on.
+template <Float4 (*Decode)(const unsigned char*)>
+struct StridedTexels {
+  const unsigned char* base;
+  size_t stride;
+  Float4 operator[](size_t i) const { return Decode(base + i * stride); }
 };
-struct ByteTexels {
-  const TexelGrid& g;
-  Float4 operator[](size_t i) const {
-    Byte4 b;
-    std::memcpy(&b, g.bytes[i].data(), sizeof b);
-    return __builtin_convertvector(b, Float4) * splat4(1.0f / 255.0f);
-  }
-};
-struct GreyByteTexels {
-  const TexelGrid& g;
-  Float4 operator[](size_t i) const {
-    const float v = float(g.grey_bytes[i]) * (1.0f / 255.0f);
-    return Float4{v, v, v, 1.0f};
-  }
-};
+using FloatTexels = StridedTexels<decode_floats>;
+using ByteTexels = StridedTexels<decode_bytes>;
+using GreyByteTexels = StridedTexels<decode_grey_byte>;
 
 // Texel (x, y), or zero outside the grid (only Clip reaches outside).
 template <class Texels>

@@ -132,9 +132,10 @@ const SrgbTable& srgb_table() {
 
 
 Float4 gather_grid(const TexelGrid& g, const TexelFootprint& f) {
-  if (!g.grey_bytes.empty()) return gather(g.width, g.height, GreyByteTexels{g}, f);
-  if (!g.bytes.empty()) return gather(g.width, g.height, ByteTexels{g}, f);
-  return gather(g.width, g.height, FloatTexels{g}, f);
+  if (!g.grey_bytes.empty()) return gather(g.width, g.height, GreyByteTexels{g.grey_bytes.data(), 1}, f);
+  if (!g.bytes.empty()) return gather(g.width, g.height, ByteTexels{g.bytes.front().data(), 4}, f);
+  const auto* floats = reinterpret_cast<const unsigned char*>(g.texels.data());
+  return gather(g.width, g.height, FloatTexels{floats, sizeof(RGBA)}, f);
 }
 
 }  // namespace

@@ -6,38 +6,6 @@
 
 namespace bxdf::render {
 
-namespace {
-
-// The interleaved records read as each storage reads its own texels (the same floats).
-struct InterleavedFloats {
-  const unsigned char* base;
-  size_t stride;
-  Float4 operator[](size_t i) const {
-    Float4 v;
-    std::memcpy(&v, base + i * stride, sizeof v);
-    return v;
-  }
-};
-struct InterleavedBytes {
-  const unsigned char* base;
-  size_t stride;
-  Float4 operator[](size_t i) const {
-    Byte4 b;
-    std::memcpy(&b, base + i * stride, sizeof b);
-    return __builtin_convertvector(b, Float4) * splat4(1.0f / 255.0f);
-  }
-};
-struct InterleavedGreyBytes {
-  const unsigned char* base;
-  size_t stride;
-  Float4 operator[](size_t i) const {
-    const float v = float(base[i * stride]) * (1.0f / 255.0f);
-    return Float4{v, v, v, 1.0f};
-  }
-};
-
-}  // namespace
-
 std::shared_ptr<const TextureGroup> TextureGroup::make(const std::vector<const Texture*>& images) {
   if (images.size() < 2) return nullptr;
   auto group = std::make_shared<TextureGroup>();
@@ -90,9 +58,10 @@ void TextureGroup::lookup(const TexelFootprint& f, const uint8_t* unassociate,
     const unsigned char* base = data_.data() + m.offset;
     Float4 c;
     switch (m.storage) {
-      case Storage::Float: c = gather(width_, height_, InterleavedFloats{base, stride_}, f); break;
-      case Storage::Byte4: c = gather(width_, height_, InterleavedBytes{base, stride_}, f); break;
-      default: c = gather(width_, height_, InterleavedGreyBytes{base, stride_}, f); break;
+      // The records read as each storage reads its own texels (the same floats).
+      case Storage::Float: c = gather(width_, height_, FloatTexels{base, stride_}, f); break;
+      case Storage::Byte4: c = gather(width_, height_, ByteTexels{base, stride_}, f); break;
+      default: c = gather(width_, height_, GreyByteTexels{base, stride_}, f); break;
     }
     store_node_outputs(image_node_convert(m.settings, c, unassociate[k] != 0),
                        registers + outputs[k]);
