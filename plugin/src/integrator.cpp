@@ -191,15 +191,26 @@ RGB PathTracer::escaped(const Vec3& dir, bool camera_ray, bool count_fully, floa
   return L;
 }
 
-PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
-                             PathStats& stats, const CameraHit* camera_hit) const {
-  PathResult result;
-  RGB L(0.0f), beta(1.0f);
-  float eta_scale = 1.0f;  // product of (η_wi/η_wo)² over refractions: undoes radiance scaling
-  Ray ray = camera_ray;
-  bool specular_bounce = false;
-  float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
-  Vec3 prev_p;
+void PathTracer::begin(const Ray& camera_ray, PathState* s) const {
+  *s = PathState();
+  s->ray = camera_ray;
+}
+
+void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
+                         const Hit* found_hit) const {
+  // One vertex of the path: what it carries from vertex to vertex lives in `s`, named here as
+  // the path's own variables.
+  RGB& L = s.L;
+  RGB& beta = s.beta;
+  float& eta_scale = s.eta_scale;
+  Ray& ray = s.ray;
+  bool& specular_bounce = s.specular_bounce;
+  float& prev_pdf = s.prev_pdf;
+  Vec3& prev_p = s.prev_p;
+  int& bounce = s.bounce;
+  int& transparent_bounces = s.transparent_bounces;
+  int& vertex = s.vertex;
+  PathResult& result = s.result;
   const auto& lights = scene_.lights();
   // Per thread, made once: graph registers and per-hit closures (reset at every hit).
   thread_local ShadingScratch scratch;
@@ -207,155 +218,148 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
   // its error averages away over a pixel's samples instead of staying fixed where they share
   // the directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does.
   const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
-  // Cycles counts a pass through a Transparent BSDF apart from the bounces (path_state_next:
-  // LABEL_TRANSPARENT): it uses no bounce, keeps the path's flags (a camera ray stays one), its
-  // MIS pdf and its ray origin (only tmin moves on), and the path ends at the surface after
-  // transparent_max_bounces + 1 passes, counting only that surface's emission.
-  int bounce = 0;               // scattering events so far (Cycles' `bounce`)
-  int transparent_bounces = 0;  // passes through transparent surfaces so far
+  // The ways out of a vertex: the path ends here, or goes on to its next vertex.
+  const auto end_path = [&s] { s.done = true; };
+  const auto next_vertex = [&s] { ++s.vertex; };
+  const bool camera_ray = bounce == 0;
+  const bool count_fully = camera_ray || specular_bounce;
+  const bool found = found_hit != nullptr;
+  Hit hit;
+  if (found) hit = *found_hit;
+  L += beta * lights_along_ray(ray, found ? hit.t : kInfinity, camera_ray, count_fully,
+                               prev_pdf);
+  if (!found) {
+    // Escaped: the world and the suns with an angle. Counted in full where light sampling
+    // could not have found them (camera rays, delta bounces), else weighted against it.
+    if (!(camera_ray && settings_.transparent_background))
+      L += beta * escaped(ray.dir, camera_ray, count_fully, prev_pdf);
+    else if (vertex > 0)  // the film shows what passed the transparent surfaces (Cycles)
+      result.alpha -= std::min(beta.average(), 1.0f);
+    return end_path();
+  }
+  if (vertex == 0) result.alpha = 1.0f;
 
-  for (int vertex = 0;; ++vertex) {  // every surface hit; the sampler's dimensions follow it
-    Hit hit;
-    ++stats.rays;
-    const bool camera_ray = bounce == 0;
-    const bool count_fully = camera_ray || specular_bounce;
-    bool found;
-    if (vertex == 0 && camera_hit) {
-      found = camera_hit->found;
-      if (found) hit = camera_hit->hit;
-    } else {
-      found = scene_.intersect(ray, &hit, camera_ray);
-    }
-    L += beta * lights_along_ray(ray, found ? hit.t : kInfinity, camera_ray, count_fully,
-                                 prev_pdf);
-    if (!found) {
-      // Escaped: the world and the suns with an angle. Counted in full where light sampling
-      // could not have found them (camera rays, delta bounces), else weighted against it.
-      if (!(camera_ray && settings_.transparent_background))
-        L += beta * escaped(ray.dir, camera_ray, count_fully, prev_pdf);
-      else if (vertex > 0)  // the film shows what passed the transparent surfaces (Cycles)
-        result.alpha -= std::min(beta.average(), 1.0f);
-      break;
-    }
-    if (vertex == 0) result.alpha = 1.0f;
+  SurfacePoint sp = scene_.surface_point(hit);
+  const Vec3 wo = -ray.dir;
+  const Material& mat = scene_.materials()[sp.material];
 
-    SurfacePoint sp = scene_.surface_point(hit);
-    const Vec3 wo = -ray.dir;
-    const Material& mat = scene_.materials()[sp.material];
-
-    const bool transmissive = scene_.transmissive(sp.material);
-    const bool flipped = face_viewer(sp, wo, transmissive);
-    // Reflection is judged against the shading normal, as Cycles' closures do: directions
-    // between the flat triangle and the smooth surface are lit (the terminator offset then lets
-    // their shadow rays out). Transmissive surfaces keep the geometric decision. The closures'
-    // normal is Cycles' valid-reflection one, in sp.ns's orientation.
-    const float viewer_side = dot(wo, sp.ng) < 0.0f ? -1.0f : 1.0f;
-    const Vec3 viewer_n = viewer_side_normal(sp, wo);  // once per hit: three uses below
-    const Vec3 closure_n = viewer_n * viewer_side;
-    BSDF bsdf(Frame::from_normal_tangent(closure_n, sp.tangent), transmissive ? sp.ng : closure_n);
-    RGB emitted = mat.emission;
-    // Past the transparent budget only this surface's emission counts (Cycles' PATH_RAY_
-    // TERMINATE_ON_NEXT_SURFACE); past max_bounces only its Transparent closures remain, which
-    // the path passes through with their summed weight (PATH_RAY_TERMINATE_AFTER_TRANSPARENT).
-    const bool ends_here = transparent_bounces > settings_.transparent_max_bounces;
-    const bool scatters = !ends_here && bounce <= settings_.max_bounces;
-    const bool may_pass = !ends_here && transparent_shadows_.transparent(sp.material);
-    if (mat.graph) {
-      // A node material: run its program at this point, then build its closures in place
-      // (not where only emission counts).
-      if (scatters || may_pass || !mat.graph->emission_is_constant()) {
-        const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped, &sp};
-        mat.graph->evaluate(ctx, scratch.registers);
-      }
-      if (camera_ray && !mat.graph->holdouts.empty()) {
-        // Cycles' holdout: on camera rays the pixel turns transparent by the holdout weight
-        // (with a transparent film), and a full holdout ends the path before its emission.
-        const RGB h = mat.graph->holdout(scratch.registers);
-        if (settings_.transparent_background) result.alpha -= std::min((h * beta).average(), 1.0f);
-        if (h.r >= 1.0f && h.g >= 1.0f && h.b >= 1.0f) break;
-      }
-      if (!mat.graph->emission_is_constant()) emitted = mat.graph->emitted(scratch.registers);
-      if (scatters || may_pass) {
-        scratch.arena.reset();
-        mat.graph->add_closures(scratch.registers, sp.tangent, scratch.arena, bsdf);
-      }
-    } else {
-      for (const BxDFPtr& c : mat.components) bsdf.add(c.get());
+  const bool transmissive = scene_.transmissive(sp.material);
+  const bool flipped = face_viewer(sp, wo, transmissive);
+  // Reflection is judged against the shading normal, as Cycles' closures do: directions
+  // between the flat triangle and the smooth surface are lit (the terminator offset then lets
+  // their shadow rays out). Transmissive surfaces keep the geometric decision. The closures'
+  // normal is Cycles' valid-reflection one, in sp.ns's orientation.
+  const float viewer_side = dot(wo, sp.ng) < 0.0f ? -1.0f : 1.0f;
+  const Vec3 viewer_n = viewer_side_normal(sp, wo);  // once per hit: three uses below
+  const Vec3 closure_n = viewer_n * viewer_side;
+  BSDF bsdf(Frame::from_normal_tangent(closure_n, sp.tangent), transmissive ? sp.ng : closure_n);
+  RGB emitted = mat.emission;
+  // Past the transparent budget only this surface's emission counts (Cycles' PATH_RAY_
+  // TERMINATE_ON_NEXT_SURFACE); past max_bounces only its Transparent closures remain, which
+  // the path passes through with their summed weight (PATH_RAY_TERMINATE_AFTER_TRANSPARENT).
+  const bool ends_here = transparent_bounces > settings_.transparent_max_bounces;
+  const bool scatters = !ends_here && bounce <= settings_.max_bounces;
+  const bool may_pass = !ends_here && transparent_shadows_.transparent(sp.material);
+  if (mat.graph) {
+    // A node material: run its program at this point, then build its closures in place
+    // (not where only emission counts).
+    if (scatters || may_pass || !mat.graph->emission_is_constant()) {
+      const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped, &sp};
+      mat.graph->evaluate(ctx, scratch.registers);
     }
-
-    if (!emitted.is_black()) {
-      if (count_fully) {
-        L += beta * emitted;
-      } else {
-        // Weighted against light sampling of the mesh's light (constant or textured).
-        const int li = scene_.area_light_of(hit);
-        const float lp = li < 0 ? 0.0f
-                                : scene_.light_sampler().probability(size_t(li)) *
-                                      mesh_light_pdf(lights[size_t(li)], prev_p, sp.p, sp.ng);
-        L += beta * emitted * power_heuristic(1.0f, prev_pdf, 1.0f, lp);
-      }
+    if (camera_ray && !mat.graph->holdouts.empty()) {
+      // Cycles' holdout: on camera rays the pixel turns transparent by the holdout weight
+      // (with a transparent film), and a full holdout ends the path before its emission.
+      const RGB h = mat.graph->holdout(scratch.registers);
+      if (settings_.transparent_background) result.alpha -= std::min((h * beta).average(), 1.0f);
+      if (h.r >= 1.0f && h.g >= 1.0f && h.b >= 1.0f) return end_path();
     }
-    if (!scatters) {
-      if (!may_pass) break;
-      const RGB passed = TransparentShadows::transparent_weight(bsdf);
-      if (passed.is_black()) break;
-      beta *= passed;
-      ++transparent_bounces;
-      ray.tmin = TransparentShadows::past_hit(ray, hit.t);
-      continue;
+    if (!mat.graph->emission_is_constant()) emitted = mat.graph->emitted(scratch.registers);
+    if (scatters || may_pass) {
+      scratch.arena.reset();
+      mat.graph->add_closures(scratch.registers, sp.tangent, scratch.arena, bsdf);
     }
-    if (bsdf.num_components() == 0) break;
-
-    if (bsdf.has_non_delta())
-      L += beta * sample_one_light(hit, sp, bsdf, wo, viewer_n, sampler.light(vertex),
-                                   transparent_bounces, stats);
-
-    const BSDFSample bs = bsdf.sample_f(wo, sampler.bsdf(vertex));
-    if (!bs.valid() || bs.f.is_black()) break;
-    beta *= bs.f_cos / bs.pdf;
-    // (Only a material with a Transparent BSDF can pass: may_pass spares the others the cast.)
-    if (may_pass && bs.component >= 0 &&
-        TransparentShadows::is_transparent(bsdf.component(bs.component))) {
-      // A pass through: the same ray goes on behind the surface (Cycles moves only tmin).
-      if (beta.is_black()) break;
-      ++transparent_bounces;
-      ray.tmin = TransparentShadows::past_hit(ray, hit.t);
-      continue;
-    }
-    ++bounce;
-    // Cycles' bsdf_sample rescales every sample of a reflecting lobe, none of a transmitting one.
-    if (!(bs.flags & kTransmission))
-      beta *= shading_offset_factor(dot(bs.wi, viewer_n), scene_.terminator(hit.mesh).shading);
-    if (beta.is_black()) break;
-    if (transmissive && (bs.flags & kTransmission)) {
-      // Entering (wo on the front side) scales radiance by (η_i/η_t)²; leaving undoes it.
-      const float eta = scene_.relative_eta(sp.material);
-      eta_scale *= dot(wo, sp.ng) > 0.0f ? eta * eta : 1.0f / (eta * eta);
-    }
-    specular_bounce = bs.is_delta();
-    prev_pdf = bs.pdf;
-    prev_p = sp.p;
-    ray.origin = offset_origin(sp.p, sp.ng, bs.wi);
-    ray.dir = bs.wi;
-    ray.tmin = 0.0f;
-    ray.tmax = kInfinity;
-
-    // Russian roulette after scattering events only: transparent passes are bounded by their
-    // own budget (unbiased either way; Cycles also rolls there).
-    if (bounce - 1 >= settings_.russian_roulette_depth) {
-      // Judged on the throughput without refraction's radiance scaling, as pbrt does, so that a
-      // path inside glass is not ended more often only because its radiance is scaled down.
-      // Continued with Cycles' probability √(max throughput), capped at 1: a path that still
-      // carries its full throughput is never cut, so a white furnace stays noise-free.
-      const float m = beta.max_component() * eta_scale;
-      const float p = std::min(std::sqrt(m), 1.0f);
-      if (p < 1.0f) {
-        if (!(sampler.russian_roulette(vertex) < p)) break;
-        beta *= 1.0f / p;
-      }
-    }
+  } else {
+    for (const BxDFPtr& c : mat.components) bsdf.add(c.get());
   }
 
+  if (!emitted.is_black()) {
+    if (count_fully) {
+      L += beta * emitted;
+    } else {
+      // Weighted against light sampling of the mesh's light (constant or textured).
+      const int li = scene_.area_light_of(hit);
+      const float lp = li < 0 ? 0.0f
+                              : scene_.light_sampler().probability(size_t(li)) *
+                                    mesh_light_pdf(lights[size_t(li)], prev_p, sp.p, sp.ng);
+      L += beta * emitted * power_heuristic(1.0f, prev_pdf, 1.0f, lp);
+    }
+  }
+  if (!scatters) {
+    if (!may_pass) return end_path();
+    const RGB passed = TransparentShadows::transparent_weight(bsdf);
+    if (passed.is_black()) return end_path();
+    beta *= passed;
+    ++transparent_bounces;
+    ray.tmin = TransparentShadows::past_hit(ray, hit.t);
+    return next_vertex();
+  }
+  if (bsdf.num_components() == 0) return end_path();
+
+  if (bsdf.has_non_delta())
+    L += beta * sample_one_light(hit, sp, bsdf, wo, viewer_n, sampler.light(vertex),
+                                 transparent_bounces, stats);
+
+  const BSDFSample bs = bsdf.sample_f(wo, sampler.bsdf(vertex));
+  if (!bs.valid() || bs.f.is_black()) return end_path();
+  beta *= bs.f_cos / bs.pdf;
+  // (Only a material with a Transparent BSDF can pass: may_pass spares the others the cast.)
+  if (may_pass && bs.component >= 0 &&
+      TransparentShadows::is_transparent(bsdf.component(bs.component))) {
+    // A pass through: the same ray goes on behind the surface (Cycles moves only tmin).
+    if (beta.is_black()) return end_path();
+    ++transparent_bounces;
+    ray.tmin = TransparentShadows::past_hit(ray, hit.t);
+    return next_vertex();
+  }
+  ++bounce;
+  // Cycles' bsdf_sample rescales every sample of a reflecting lobe, none of a transmitting one.
+  if (!(bs.flags & kTransmission))
+    beta *= shading_offset_factor(dot(bs.wi, viewer_n), scene_.terminator(hit.mesh).shading);
+  if (beta.is_black()) return end_path();
+  if (transmissive && (bs.flags & kTransmission)) {
+    // Entering (wo on the front side) scales radiance by (η_i/η_t)²; leaving undoes it.
+    const float eta = scene_.relative_eta(sp.material);
+    eta_scale *= dot(wo, sp.ng) > 0.0f ? eta * eta : 1.0f / (eta * eta);
+  }
+  specular_bounce = bs.is_delta();
+  prev_pdf = bs.pdf;
+  prev_p = sp.p;
+  ray.origin = offset_origin(sp.p, sp.ng, bs.wi);
+  ray.dir = bs.wi;
+  ray.tmin = 0.0f;
+  ray.tmax = kInfinity;
+
+  // Russian roulette after scattering events only: transparent passes are bounded by their
+  // own budget (unbiased either way; Cycles also rolls there).
+  if (bounce - 1 >= settings_.russian_roulette_depth) {
+    // Judged on the throughput without refraction's radiance scaling, as pbrt does, so that a
+    // path inside glass is not ended more often only because its radiance is scaled down.
+    // Continued with Cycles' probability √(max throughput), capped at 1: a path that still
+    // carries its full throughput is never cut, so a white furnace stays noise-free.
+    const float m = beta.max_component() * eta_scale;
+    const float p = std::min(std::sqrt(m), 1.0f);
+    if (p < 1.0f) {
+      if (!(sampler.russian_roulette(vertex) < p)) return end_path();
+      beta *= 1.0f / p;
+    }
+  }
+  next_vertex();
+}
+
+PathResult PathTracer::finish(PathState& s, PathStats& stats) const {
+  RGB L = s.L;
+  PathResult result = s.result;
   const bool finite = std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b);
   if (!finite || (!scene_.signed_emission() && !finite_nonnegative(L))) {
     ++stats.rejected;
@@ -363,6 +367,26 @@ PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
   }
   result.radiance = L;
   return result;
+}
+
+PathResult PathTracer::trace(const Ray& camera_ray, const PathSampler& sampler,
+                             PathStats& stats, const CameraHit* camera_hit) const {
+  PathState s;
+  begin(camera_ray, &s);
+  for (;;) {  // every surface hit; the sampler's dimensions follow it
+    ++stats.rays;
+    Hit hit;
+    bool found;
+    if (s.vertex == 0 && camera_hit) {
+      found = camera_hit->found;
+      if (found) hit = camera_hit->hit;
+    } else {
+      found = scene_.intersect(s.ray, &hit, s.bounce == 0);
+    }
+    advance(s, sampler, stats, found ? &hit : nullptr);
+    if (s.done) break;
+  }
+  return finish(s, stats);
 }
 
 }  // namespace bxdf::render

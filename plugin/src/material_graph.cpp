@@ -190,6 +190,15 @@ void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
   }
 }
 
+void MaterialGraph::prefetch_texels(const Scene& scene, const Hit& hit) const {
+  for (const UVLookup& l : uv_lookups) {
+    const Vec3 uv = scene.uv(hit, l.uv_map);
+    const TexelFootprint f = l.texture->footprint(uv.x, uv.y);
+    if (l.group) l.group->prefetch(f);
+    else l.texture->prefetch(f);
+  }
+}
+
 void MaterialGraph::group_images() {
   image_groups.clear();
   group_unassociate.clear();
@@ -231,6 +240,24 @@ void MaterialGraph::group_images() {
     if (auto interleaved = TextureGroup::make(images)) {
       first.texture_group = int(texture_groups.size());
       texture_groups.push_back(std::move(interleaved));
+    }
+  }
+  // Lookups at a UV map's point at the hit itself (not at bump offsets), read straight from
+  // the UV node's register.
+  uv_lookups.clear();
+  for (const GraphNode& node : nodes) {
+    if (node.op != GraphOp::Image || node.grouped || node.offset != 0 || node.in[0].reg < 0 ||
+        node.in[0].convert != GraphConvert::None)
+      continue;
+    for (const GraphNode& source : nodes) {
+      if (source.op == GraphOp::UV && source.offset == 0 && source.out == node.in[0].reg) {
+        UVLookup l;
+        l.uv_map = source.index;
+        l.texture = textures[size_t(node.index)].get();
+        l.group = node.texture_group >= 0 ? texture_groups[size_t(node.texture_group)].get() : nullptr;
+        uv_lookups.push_back(l);
+        break;
+      }
     }
   }
 }

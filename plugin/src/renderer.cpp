@@ -1,6 +1,7 @@
 #include "bxdf/render/renderer.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -8,10 +9,12 @@
 #include <array>
 #include <chrono>
 #include <ctime>
+#include <memory>
 #include <mutex>
 #include <string>
 
 #include "bxdf/params.h"
+#include "path_batch.h"
 #include "sampler/path_sampler.h"
 
 namespace bxdf::render {
@@ -93,30 +96,24 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
            (callbacks.cancel && callbacks.cancel->load(std::memory_order_relaxed));
   };
 
+  // One batch of paths per render thread, made when the thread first needs it.
+  tbb::enumerable_thread_specific<std::unique_ptr<PathBatch>> batches(
+      [&] { return std::make_unique<PathBatch>(scene, tracer); });
   const auto render_tile = [&](const Tile& tile, int first_sample, int count) {
     PathStats local;
     uint64_t samples = 0;
-    // Camera rays go to Embree in packets of consecutive samples (a pixel's, then the next
-    // pixel's): nearby rays, one walk of the BVH. Each ray's hit is what it alone would find.
-    constexpr int kPacket = Scene::kCameraPacket;
-    struct CameraSample {
-      int x, y;
-      uint32_t pixel_seed, index;
-    };
-    std::array<CameraSample, kPacket> queued;
-    std::array<Ray, kPacket> camera_rays;
-    std::array<CameraHit, kPacket> hits;
-    int n = 0;
-    const auto trace_queued = [&] {
-      scene.intersect_camera_rays(camera_rays.data(), n, hits.data());
-      for (int k = 0; k < n; ++k) {
-        const CameraSample& c = queued[size_t(k)];
-        const PathSampler sampler(c.pixel_seed, c.index);
-        const PathResult r = tracer.trace(camera_rays[size_t(k)], sampler, local, &hits[size_t(k)]);
+    // Traced in batches of consecutive samples (a pixel's, then the next pixel's; PathBatch);
+    // the film takes the results in sample order.
+    PathBatch& batch = *batches.local();
+    const auto trace_batch = [&] {
+      batch.trace(local);
+      for (int k = 0; k < batch.size(); ++k) {
+        const PathBatch::Sample& c = batch.sample(k);
+        const PathResult& r = batch.result(k);
         film.add_sample(c.x, c.y, r.radiance, std::max(r.alpha, background_alpha));
       }
-      samples += uint64_t(n);
-      n = 0;
+      samples += uint64_t(batch.size());
+      batch.clear();
     };
     for (int y = tile.y0; y < tile.y1; ++y) {
       for (int x = tile.x0; x < tile.x1; ++x) {
@@ -127,14 +124,14 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
         for (int s = first_sample; s < first_sample + count; ++s) {
           const PathSampler sampler(pixel_seed, static_cast<uint32_t>(s));
           const Point2 offset = filter.sample(sampler.filter());
-          camera_rays[size_t(n)] = camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
-                                                       static_cast<float>(y) + 0.5f + offset.y);
-          queued[size_t(n)] = {x, y, pixel_seed, static_cast<uint32_t>(s)};
-          if (++n == kPacket) trace_queued();
+          batch.add({x, y, pixel_seed, static_cast<uint32_t>(s)},
+                    camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
+                                        static_cast<float>(y) + 0.5f + offset.y));
+          if (batch.full()) trace_batch();
         }
       }
     }
-    if (n > 0) trace_queued();
+    if (batch.size() > 0) trace_batch();
     rays += local.rays;
     shadow_rays += local.shadow_rays;
     rejected += local.rejected;

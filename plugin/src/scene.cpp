@@ -591,6 +591,64 @@ bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+void Scene::intersect_stream(const Ray* const* rays, const uint8_t* camera, int count, Hit* hits,
+                             uint8_t* found) const {
+  constexpr int kMax = 256;
+  RTCRayHit rh[kMax];
+  for (int first = 0; first < count; first += kMax) {
+    const int n = std::min(kMax, count - first);
+    for (int k = 0; k < n; ++k) {
+      const Ray& ray = *rays[first + k];
+      RTCRayHit& r = rh[k];
+      r.ray.org_x = ray.origin.x;
+      r.ray.org_y = ray.origin.y;
+      r.ray.org_z = ray.origin.z;
+      r.ray.dir_x = ray.dir.x;
+      r.ray.dir_y = ray.dir.y;
+      r.ray.dir_z = ray.dir.z;
+      r.ray.tnear = ray.tmin;
+      r.ray.tfar = ray.tmax;
+      r.ray.time = 0.0f;
+      r.ray.mask = camera[first + k] ? kMaskCamera : kMaskOther;
+      r.ray.id = 0;
+      r.ray.flags = 0;
+      r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    rtcIntersect1M(embree_->scene, &ctx, rh, unsigned(n), sizeof(RTCRayHit));
+    for (int k = 0; k < n; ++k) {
+      const RTCRayHit& r = rh[k];
+      found[first + k] = r.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      if (found[first + k])
+        hits[first + k] = decode_hit(r.ray.tfar, r.hit.geomID, r.hit.instID[0], r.hit.primID,
+                                     r.hit.u, r.hit.v);
+    }
+  }
+}
+
+void Scene::prefetch_triangle(const Hit& hit) const {
+  __builtin_prefetch(meshes_[hit.mesh].indices.data() + 3 * size_t(hit.triangle));
+}
+
+void Scene::prefetch_vertices(const Hit& hit) const {
+  const StoredMesh& m = meshes_[hit.mesh];
+  const uint32_t* t = m.indices.data() + 3 * size_t(hit.triangle);
+  for (int k = 0; k < 3; ++k) {
+    __builtin_prefetch(m.positions.data() + 3 * size_t(t[k]));
+    if (!m.normals.empty()) __builtin_prefetch(m.normals.data() + 3 * size_t(t[k]));
+    if (!m.uvs.empty()) __builtin_prefetch(m.uvs.data() + 2 * size_t(t[k]));
+  }
+  if (!m.uv_maps.empty()) __builtin_prefetch(m.uv_maps[0].data() + 6 * size_t(hit.triangle));
+  if (!m.tangents.empty() && !m.tangents[0].empty()) {
+    const float* corners = m.tangents[0].data() + 12 * size_t(hit.triangle);
+    __builtin_prefetch(corners);
+    __builtin_prefetch(corners + 11);  // 48 bytes may span two cache lines
+  }
+}
+
 SurfacePoint Scene::surface_point(const Hit& hit) const {
   // Computed in the mesh's space (world, or an instanced mesh's object space), then moved to
   // world space by the hit's placement: points and dp/du as points and vectors, normals by the

@@ -223,6 +223,16 @@ void store_node_outputs(Float4 c, Vec3* out) {
   out[1] = Vec3(c[3], c[3], c[3]);
 }
 
+void Texture::prefetch(const TexelFootprint& f) const {
+  if (!f.inside) return;
+  const TexelGrid& g = grid_;
+  const unsigned char* base = !g.grey_bytes.empty() ? g.grey_bytes.data()
+                              : !g.bytes.empty()    ? g.bytes.front().data()
+                                                    : reinterpret_cast<const unsigned char*>(g.texels.data());
+  const size_t size = !g.grey_bytes.empty() ? 1 : !g.bytes.empty() ? 4 : sizeof(RGBA);
+  for (int j = 0; j < f.n; ++j) __builtin_prefetch(base + (f.rows[j] + size_t(f.xs[0])) * size);
+}
+
 TexelFootprint Texture::footprint(float u, float v) const {
   return texel_footprint(grid_.width, grid_.height, settings_.interpolation, settings_.extension,
                          u, v);

@@ -68,4 +68,13 @@ void TextureGroup::lookup(const TexelFootprint& f, const uint8_t* unassociate,
   }
 }
 
+void TextureGroup::prefetch(const TexelFootprint& f) const {
+  if (!f.inside) return;
+  for (int j = 0; j < f.n; ++j) {
+    const unsigned char* row = data_.data() + (f.rows[j] + size_t(f.xs[0])) * stride_;
+    __builtin_prefetch(row);
+    __builtin_prefetch(row + size_t(f.n) * stride_ - 1);  // the row's last texel of the footprint
+  }
+}
+
 }  // namespace bxdf::render

@@ -44,6 +44,26 @@ struct PathResult {
   float alpha = 0.0f;
 };
 
+// One camera sample's path between two intersections: what the path tracer carries from one
+// vertex to the next, so that a batch of paths can be advanced vertex by vertex.
+struct PathState {
+  Ray ray;                 // the ray to trace next
+  RGB L{0.0f}, beta{1.0f};
+  float eta_scale = 1.0f;  // product of (η_wi/η_wo)² over refractions: undoes radiance scaling
+  bool specular_bounce = false;
+  float prev_pdf = 0.0f;   // BSDF pdf of the direction that led here (for MIS)
+  Vec3 prev_p;
+  // Cycles counts a pass through a Transparent BSDF apart from the bounces (path_state_next:
+  // LABEL_TRANSPARENT): it uses no bounce, keeps the path's flags (a camera ray stays one), its
+  // MIS pdf and its ray origin (only tmin moves on), and the path ends at the surface after
+  // transparent_max_bounces + 1 passes, counting only that surface's emission.
+  int bounce = 0;               // scattering events so far (Cycles' `bounce`)
+  int transparent_bounces = 0;  // passes through transparent surfaces so far
+  int vertex = 0;               // surface hits so far; the sampler's dimensions follow it
+  PathResult result;
+  bool done = false;
+};
+
 class PathTracer {
  public:
   // The scene must be committed. Throws ParameterError for max_bounces < 0.
@@ -55,6 +75,14 @@ class PathTracer {
   // (Scene::intersect_camera_rays).
   PathResult trace(const Ray& camera_ray, const PathSampler& sampler, PathStats& stats,
                    const CameraHit* camera_hit = nullptr) const;
+
+  // trace() in steps, for paths traced in batches: begin, then for each intersection of s.ray
+  // (stats.rays counted by the caller; camera rays are those of s.bounce == 0) advance with its
+  // hit (null: the ray escaped) until s.done, then finish.
+  void begin(const Ray& camera_ray, PathState* s) const;
+  void advance(PathState& s, const PathSampler& sampler, PathStats& stats,
+               const Hit* hit) const;
+  PathResult finish(PathState& s, PathStats& stats) const;
 
  private:
   // `viewer_n`: viewer_side_normal of the hit (computed once per hit by trace).

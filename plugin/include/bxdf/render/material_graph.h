@@ -130,6 +130,17 @@ class MaterialGraph {
   std::vector<std::shared_ptr<const TextureGroup>> texture_groups;
   // Forms the image groups once the nodes and textures are final.
   void group_images();
+  // Image lookups at a UV map's point at the hit (a group's, or a lone image node's), found by
+  // group_images: what prefetch_texels starts loading.
+  struct UVLookup {
+    int uv_map = 0;
+    const Texture* texture = nullptr;        // its footprint
+    const TextureGroup* group = nullptr;     // or null: the texture's own texels
+  };
+  std::vector<UVLookup> uv_lookups;
+  // Starts loading the texels these lookups will read at `hit` (a hint, for a batch of hits
+  // shaded after).
+  void prefetch_texels(const Scene& scene, const Hit& hit) const;
 
   // Runs the program; `registers` holds kMaxRegisters.
   void evaluate(const ShadingContext& ctx, Vec3* registers) const;

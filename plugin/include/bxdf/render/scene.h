@@ -118,6 +118,19 @@ class Scene {
   // BVH for all of them together.
   static constexpr int kCameraPacket = 8;
   void intersect_camera_rays(const Ray* rays, int count, CameraHit* hits) const;
+  // Start loading what shading `hit` reads, for a batch of hits to shade after: the triangle's
+  // indices (stage 0), then, once those have arrived, its vertices' positions, normals and UVs
+  // and its corners' first UV map and tangents (stage 1). Only hints: nothing changes.
+  // intersect() for `count` rays at once (one Embree stream query); camera[k] as its camera_ray.
+  void intersect_stream(const Ray* const* rays, const uint8_t* camera, int count, Hit* hits,
+                        uint8_t* found) const;
+  void prefetch_triangle(const Hit& hit) const;
+  void prefetch_vertices(const Hit& hit) const;
+  // The material index surface_point gives the hit.
+  uint32_t material_of(const Hit& hit) const {
+    const StoredMesh& m = meshes_[hit.mesh];
+    return m.material_indices.empty() ? m.material : m.material_indices[hit.triangle];
+  }
   // True when something blocks the segment origin + t·dir, t in (0, tmax); meshes that do not
   // cast shadows are skipped.
   bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;

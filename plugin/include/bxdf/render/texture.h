@@ -75,6 +75,8 @@ class Texture {
   TexelFootprint footprint(float u, float v) const;
   void lookup(const TexelFootprint& footprint, bool unassociate, Vec3* out) const;
   bool shares_footprints(const Texture& other) const;
+  // Starts loading the footprint's texel rows (a hint, for a batch of lookups to come).
+  void prefetch(const TexelFootprint& footprint) const;
 
   const TextureSettings& settings() const { return settings_; }
   const TexelGrid& texels() const { return grid_; }

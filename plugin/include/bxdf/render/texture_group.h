@@ -30,6 +30,8 @@ class TextureGroup {
   // unassociate[k], registers + outputs[k]) gives for image k.
   void lookup(const TexelFootprint& footprint, const uint8_t* unassociate, const int* outputs,
               Vec3* registers) const;
+  // Starts loading the footprint's records (a hint, for a batch of lookups to come).
+  void prefetch(const TexelFootprint& footprint) const;
 
  private:
   enum class Storage : uint8_t { Float, Byte4, GreyByte };

@@ -1,0 +1,63 @@
+// Camera samples traced together, vertex by vertex (a small wavefront): the batch's camera rays
+// go to Embree in packets of nearby rays, each later vertex's rays in one stream query, and
+// between a vertex's intersections and its shading passes over the batch start loading what
+// shading reads (the triangles' indices, then their vertices, then the texels a node material
+// looks up at the hit's UVs), so that the batch's memory waits overlap instead of following one
+// another. Every path is advanced by the path tracer's own step (PathTracer::advance): its
+// result is what tracing it alone gives.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "bxdf/render/integrator.h"
+#include "bxdf/render/scene.h"
+#include "sampler/path_sampler.h"
+
+namespace bxdf::render {
+
+class PathBatch {
+ public:
+  static constexpr int kSize = 16 * Scene::kCameraPacket;
+
+  // A camera sample: its pixel and its number in the pixel's sequence.
+  struct Sample {
+    int x, y;
+    uint32_t pixel_seed, index;
+  };
+
+  PathBatch(const Scene& scene, const PathTracer& tracer) : scene_(scene), tracer_(tracer) {}
+
+  bool full() const { return count_ == kSize; }
+  int size() const { return count_; }
+  void add(const Sample& sample, const Ray& camera_ray);
+  // Traces every sample added since the last clear(); result(k) is sample(k)'s.
+  void trace(PathStats& stats);
+  const Sample& sample(int k) const { return samples_[size_t(k)]; }
+  const PathResult& result(int k) const { return results_[size_t(k)]; }
+  void clear() { count_ = 0; }
+
+ private:
+  PathSampler sampler(int k) const {
+    return PathSampler(samples_[size_t(k)].pixel_seed, samples_[size_t(k)].index);
+  }
+  // Starts loading what shading the live paths' hits reads.
+  void prefetch_shading(int live) const;
+
+  const Scene& scene_;
+  const PathTracer& tracer_;
+  int count_ = 0;
+  std::array<Sample, kSize> samples_;
+  std::array<Ray, kSize> camera_rays_;
+  std::array<CameraHit, kSize> camera_hits_;
+  std::array<PathState, kSize> paths_;
+  std::array<PathResult, kSize> results_;
+  // Per live path (index into the batch), its ray and what the stream query found.
+  std::array<int, kSize> live_;
+  std::array<const Ray*, kSize> rays_;
+  std::array<uint8_t, kSize> camera_;
+  std::array<uint8_t, kSize> found_;
+  std::array<Hit, kSize> hits_;
+};
+
+}  // namespace bxdf::render
