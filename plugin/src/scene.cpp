@@ -51,6 +51,26 @@ constexpr size_t kCompactBvhTriangles = 2'000'000;
 // Embree geometry masks: which kinds of ray see a mesh.
 constexpr unsigned kMaskCamera = 1u, kMaskShadow = 2u, kMaskOther = 4u;
 
+// A closest-hit query for `ray` as Embree takes it: no hit yet, seeing the meshes of `mask`.
+RTCRayHit embree_ray_hit(const Ray& ray, unsigned mask) {
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x;
+  rh.ray.org_y = ray.origin.y;
+  rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.dir.x;
+  rh.ray.dir_y = ray.dir.y;
+  rh.ray.dir_z = ray.dir.z;
+  rh.ray.tnear = ray.tmin;
+  rh.ray.tfar = ray.tmax;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = mask;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
 Vec3 load3(const std::vector<float>& a, uint32_t i) {
   return {a[3 * size_t(i)], a[3 * size_t(i) + 1], a[3 * size_t(i) + 2]};
 }
@@ -497,21 +517,7 @@ void Scene::commit() {
 bool Scene::intersect(const Ray& ray, Hit* hit, bool camera_ray) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  RTCRayHit rh;
-  rh.ray.org_x = ray.origin.x;
-  rh.ray.org_y = ray.origin.y;
-  rh.ray.org_z = ray.origin.z;
-  rh.ray.dir_x = ray.dir.x;
-  rh.ray.dir_y = ray.dir.y;
-  rh.ray.dir_z = ray.dir.z;
-  rh.ray.tnear = ray.tmin;
-  rh.ray.tfar = ray.tmax;
-  rh.ray.time = 0.0f;
-  rh.ray.mask = camera_ray ? kMaskCamera : kMaskOther;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = embree_ray_hit(ray, camera_ray ? kMaskCamera : kMaskOther);
   rtcIntersect1(embree_->scene, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   *hit = decode_hit(rh.ray.tfar, rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, rh.hit.u,
@@ -597,24 +603,8 @@ void Scene::intersect_stream(const Ray* const* rays, const uint8_t* camera, int 
   RTCRayHit rh[kMax];
   for (int first = 0; first < count; first += kMax) {
     const int n = std::min(kMax, count - first);
-    for (int k = 0; k < n; ++k) {
-      const Ray& ray = *rays[first + k];
-      RTCRayHit& r = rh[k];
-      r.ray.org_x = ray.origin.x;
-      r.ray.org_y = ray.origin.y;
-      r.ray.org_z = ray.origin.z;
-      r.ray.dir_x = ray.dir.x;
-      r.ray.dir_y = ray.dir.y;
-      r.ray.dir_z = ray.dir.z;
-      r.ray.tnear = ray.tmin;
-      r.ray.tfar = ray.tmax;
-      r.ray.time = 0.0f;
-      r.ray.mask = camera[first + k] ? kMaskCamera : kMaskOther;
-      r.ray.id = 0;
-      r.ray.flags = 0;
-      r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    }
+    for (int k = 0; k < n; ++k)
+      rh[k] = embree_ray_hit(*rays[first + k], camera[first + k] ? kMaskCamera : kMaskOther);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
@@ -708,7 +698,7 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
     sp.uv = Point2(hit.b1, hit.b2);
   }
   sp.tangent = have_tangent ? tangent : radial_tangent(hit, p);
-  sp.material = m.material_indices.empty() ? m.material : m.material_indices[hit.triangle];
+  sp.material = material_of(hit);
   return sp;
 }
 
