@@ -92,6 +92,30 @@ Float4 gather(int width, int height, const Texels& t, const TexelFootprint& f) {
   return f.inside ? gather<true>(width, height, t, f) : gather<false>(width, height, t, f);
 }
 
+// A grid's texels as one array: its storage, first byte and bytes per texel.
+struct TexelArray {
+  TexelStorage storage;
+  const unsigned char* base;
+  size_t size;
+};
+inline TexelArray texel_array(const TexelGrid& g) {
+  if (!g.grey_bytes.empty()) return {TexelStorage::GreyBytes, g.grey_bytes.data(), 1};
+  if (!g.bytes.empty()) return {TexelStorage::Bytes, g.bytes.front().data(), 4};
+  return {TexelStorage::Floats, reinterpret_cast<const unsigned char*>(g.texels.data()), sizeof(RGBA)};
+}
+
+// gather() over texels of `storage` lying `stride` bytes apart from `base` on (an image's own
+// array, or its place in interleaved records).
+inline Float4 gather_stored(int width, int height, TexelStorage storage, const unsigned char* base,
+                            size_t stride, const TexelFootprint& f) {
+  switch (storage) {
+    case TexelStorage::GreyBytes: return gather(width, height, GreyByteTexels{base, stride}, f);
+    case TexelStorage::Bytes: return gather(width, height, ByteTexels{base, stride}, f);
+    case TexelStorage::Floats: break;
+  }
+  return gather(width, height, FloatTexels{base, stride}, f);
+}
+
 // The image node's conversion of gathered texels: alpha unassociated when asked, then sRGB to
 // linear for sRGB images (Cycles' order).
 Float4 image_node_convert(const TextureSettings& settings, Float4 texels, bool unassociate);

@@ -132,10 +132,8 @@ const SrgbTable& srgb_table() {
 
 
 Float4 gather_grid(const TexelGrid& g, const TexelFootprint& f) {
-  if (!g.grey_bytes.empty()) return gather(g.width, g.height, GreyByteTexels{g.grey_bytes.data(), 1}, f);
-  if (!g.bytes.empty()) return gather(g.width, g.height, ByteTexels{g.bytes.front().data(), 4}, f);
-  const auto* floats = reinterpret_cast<const unsigned char*>(g.texels.data());
-  return gather(g.width, g.height, FloatTexels{floats, sizeof(RGBA)}, f);
+  const TexelArray a = texel_array(g);
+  return gather_stored(g.width, g.height, a.storage, a.base, a.size, f);
 }
 
 }  // namespace
@@ -225,12 +223,8 @@ void store_node_outputs(Float4 c, Vec3* out) {
 
 void Texture::prefetch(const TexelFootprint& f) const {
   if (!f.inside) return;
-  const TexelGrid& g = grid_;
-  const unsigned char* base = !g.grey_bytes.empty() ? g.grey_bytes.data()
-                              : !g.bytes.empty()    ? g.bytes.front().data()
-                                                    : reinterpret_cast<const unsigned char*>(g.texels.data());
-  const size_t size = !g.grey_bytes.empty() ? 1 : !g.bytes.empty() ? 4 : sizeof(RGBA);
-  for (int j = 0; j < f.n; ++j) __builtin_prefetch(base + (f.rows[j] + size_t(f.xs[0])) * size);
+  const TexelArray a = texel_array(grid_);
+  for (int j = 0; j < f.n; ++j) __builtin_prefetch(a.base + (f.rows[j] + size_t(f.xs[0])) * a.size);
 }
 
 TexelFootprint Texture::footprint(float u, float v) const {

@@ -12,24 +12,18 @@ std::shared_ptr<const TextureGroup> TextureGroup::make(const std::vector<const T
   const TexelGrid& first = images[0]->texels();
   group->width_ = first.width;
   group->height_ = first.height;
-  const auto storage_of = [](const TexelGrid& g) {
-    return !g.grey_bytes.empty() ? Storage::GreyByte
-           : !g.bytes.empty()    ? Storage::Byte4
-                                 : Storage::Float;
-  };
-  const auto bytes_of = [](Storage s) {
-    return s == Storage::Float ? sizeof(RGBA) : s == Storage::Byte4 ? size_t(4) : size_t(1);
-  };
   // Members in the caller's order; within a record floats first, then 4-byte texels, then
   // single bytes, so that every float stays 4-byte aligned.
   group->members_.resize(images.size());
-  for (const Storage storage : {Storage::Float, Storage::Byte4, Storage::GreyByte}) {
+  for (const TexelStorage storage :
+       {TexelStorage::Floats, TexelStorage::Bytes, TexelStorage::GreyBytes}) {
     for (size_t k = 0; k < images.size(); ++k) {
       const TexelGrid& g = images[k]->texels();
       if (g.width != first.width || g.height != first.height) return nullptr;
-      if (storage_of(g) != storage) continue;
+      const TexelArray a = texel_array(g);
+      if (a.storage != storage) continue;
       group->members_[k] = {storage, group->stride_, images[k]->settings()};
-      group->stride_ += bytes_of(storage);
+      group->stride_ += a.size;
     }
   }
   group->stride_ = (group->stride_ + 3) & ~size_t(3);
@@ -37,16 +31,10 @@ std::shared_ptr<const TextureGroup> TextureGroup::make(const std::vector<const T
   if (group->stride_ * texels > kMaxBytes) return nullptr;
   group->data_.assign(group->stride_ * texels, 0);
   for (size_t k = 0; k < images.size(); ++k) {
-    const TexelGrid& g = images[k]->texels();
-    const Member& m = group->members_[k];
-    const size_t size = bytes_of(m.storage);
-    const unsigned char* source =
-        m.storage == Storage::Float  ? reinterpret_cast<const unsigned char*>(g.texels.data())
-        : m.storage == Storage::Byte4 ? g.bytes.front().data()
-                                      : g.grey_bytes.data();
-    unsigned char* target = group->data_.data() + m.offset;
+    const TexelArray a = texel_array(images[k]->texels());
+    unsigned char* target = group->data_.data() + group->members_[k].offset;
     for (size_t i = 0; i < texels; ++i)
-      std::memcpy(target + i * group->stride_, source + i * size, size);
+      std::memcpy(target + i * group->stride_, a.base + i * a.size, a.size);
   }
   return group;
 }
@@ -56,13 +44,8 @@ void TextureGroup::lookup(const TexelFootprint& f, const uint8_t* unassociate,
   for (size_t k = 0; k < members_.size(); ++k) {
     const Member& m = members_[k];
     const unsigned char* base = data_.data() + m.offset;
-    Float4 c;
-    switch (m.storage) {
-      // The records read as each storage reads its own texels (the same floats).
-      case Storage::Float: c = gather(width_, height_, FloatTexels{base, stride_}, f); break;
-      case Storage::Byte4: c = gather(width_, height_, ByteTexels{base, stride_}, f); break;
-      default: c = gather(width_, height_, GreyByteTexels{base, stride_}, f); break;
-    }
+    // The records read as each storage reads its own texels (the same floats).
+    const Float4 c = gather_stored(width_, height_, m.storage, base, stride_, f);
     store_node_outputs(image_node_convert(m.settings, c, unassociate[k] != 0),
                        registers + outputs[k]);
   }

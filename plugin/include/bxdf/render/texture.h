@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -45,6 +46,9 @@ struct TexelGrid {
   std::vector<std::array<unsigned char, 4>> bytes;  // width * height, or empty
   std::vector<unsigned char> grey_bytes;  // one-channel 8-bit images (alpha 1), or empty
 };
+
+// How a grid keeps its texels (which of TexelGrid's arrays holds them).
+enum class TexelStorage : uint8_t { Floats, Bytes, GreyBytes };
 
 // Which texels a lookup at (u, v) reads, and their weights: Cycles' interpolation, extension
 // and texel-centre convention. Found once for several images of one size and settings read

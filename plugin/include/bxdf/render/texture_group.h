@@ -34,9 +34,8 @@ class TextureGroup {
   void prefetch(const TexelFootprint& footprint) const;
 
  private:
-  enum class Storage : uint8_t { Float, Byte4, GreyByte };
   struct Member {
-    Storage storage;
+    TexelStorage storage;
     size_t offset;  // of the image's texel within a record
     TextureSettings settings;
   };
