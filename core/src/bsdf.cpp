@@ -66,14 +66,17 @@ bool BSDF::has_transmission() const {
 }
 
 RGB BSDF::component_f(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const {
-  const BxDF& b = *components_[i];
-  RGB f = b.f(wo, wi);
+  return bump_shadowed(i, components_[i]->f(wo, wi), wo, wi, wi_world);
+}
+
+RGB BSDF::bump_shadowed(int i, RGB f, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const {
   if (bump_shadowing_[i] == BumpShadowing::Whole) {
     f *= bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
   } else if (bump_shadowing_[i] == BumpShadowing::DiffuseLobes) {
     // f − (1 − term) · diffuse part, so the other lobes keep their full value.
     const float term = bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
-    if (term < 1.0f) f = sanitize_nonnegative(f - b.diffuse_closure_f(wo, wi) * (1.0f - term));
+    if (term < 1.0f)
+      f = sanitize_nonnegative(f - components_[i]->diffuse_closure_f(wo, wi) * (1.0f - term));
   }
   return f;
 }
@@ -95,7 +98,7 @@ RGB BSDF::weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask
 }
 
 void BSDF::f_f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, RGB* f_sum,
-                       RGB* f_cos_sum, float* pdf_out) const {
+                       RGB* f_cos_sum, float* pdf_out, const SampledComponent* sampled) const {
   // f(), f_cos() and pdf() in one pass, term for term as they compute them.
   const bool reflect = dot(wi_world, ng_) * dot(wo_world, ng_) > 0.0f;
   RGB f_total(0.0f), f_cos_total(0.0f);
@@ -105,6 +108,18 @@ void BSDF::f_f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask
     if (!b.matches(mask)) continue;
     total_weight += sample_weights_[i];
     const bool scatters = agrees_with_geometry(b.flags(), reflect);
+    if (sampled && i == sampled->index) {
+      // Its own sample's f and pdf: the same values (every model's sample agrees with its f
+      // and pdf, test ModelSampling.SampleReturnsPdfAndF), as Cycles' bsdf_sample hands them
+      // back and only the other closures are evaluated.
+      const BxDFSample& s = sampled->sample;
+      pdf_sum += sample_weights_[i] * s.pdf;
+      if (!scatters) continue;
+      const RGB f = bump_shadowed(i, s.f, sampled->wo, s.wi, wi_world);
+      f_total += weights_[i] * f;
+      f_cos_total += weights_[i] * (f * abs_cos_theta(s.wi));
+      continue;
+    }
     if (sample_weights_[i] == 0.0f && !scatters) continue;
     const Vec3 wo = frames_[i].to_local(wo_world);
     if (wo.z == 0.0f) continue;
@@ -195,8 +210,9 @@ BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
   }
 
   // Non-delta: f and pdf of the whole mixture, with the geometric-normal test, as f() does
-  // (one pass over the components for the three).
-  f_f_cos_pdf(wo_world, out.wi, mask, &out.f, &out.f_cos, &out.pdf);
+  // (one pass over the components for the three; the picked one's from its sample).
+  const SampledComponent own{picked, wo, s};
+  f_f_cos_pdf(wo_world, out.wi, mask, &out.f, &out.f_cos, &out.pdf, &own);
   if (!(out.pdf > 0.0f)) return BSDFSample{};
   return out;
 }

@@ -85,9 +85,18 @@ class BSDF {
   RGB weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, Term term) const;
   // Component i's f at local wo, wi, with Cycles' bump shadowing where it applies.
   RGB component_f(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const;
+  // f of component i with the bump-shadowing term its normal calls for.
+  RGB bump_shadowed(int i, RGB f, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const;
   // f(), f_cos() and pdf() of one direction pair in one pass (what sample_f needs).
+  // `sampled`: a component whose f and pdf at this pair are already known (its own sample's),
+  // so it is not evaluated again; nullptr when none.
+  struct SampledComponent {
+    int index;
+    const Vec3& wo;  // local, in the component's frame
+    const BxDFSample& sample;
+  };
   void f_f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, RGB* f,
-                   RGB* f_cos, float* pdf) const;
+                   RGB* f_cos, float* pdf, const SampledComponent* sampled = nullptr) const;
 
   // The components' slots: add() writes [0, count_), nothing reads past it. Left
   // uninitialised: a BSDF is built at every path vertex, and writing all eight slots (~500
