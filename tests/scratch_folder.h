@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -43,6 +44,25 @@ inline ShellResult run_shell(const std::string& command) {
   const int status = pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return r;
+}
+
+// A path in the temporary folder that no other test process shares: ctest runs each case as its own
+// process, several at once, and a fixed name let one case truncate a file while another read it.
+// The files are removed when the process exits.
+inline std::string process_temp_path(const std::string& name) {
+  struct RemovedAtExit {
+    std::set<std::string> paths;
+    ~RemovedAtExit() {
+      std::error_code ec;
+      for (const std::string& p : paths) std::filesystem::remove(p, ec);
+    }
+  };
+  static RemovedAtExit files;
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("bxdf_" + std::to_string(::getpid()) + "_" + name))
+                               .string();
+  files.paths.insert(path);
+  return path;
 }
 
 // A test with its own folder (removed afterwards), named after the program, process and test.

@@ -4,6 +4,8 @@
 // same direction gives the same colour in both).
 #include <gtest/gtest.h>
 
+#include "../scratch_folder.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -30,7 +32,7 @@ constexpr int kW = 4, kH = 2;
 float texel(int x, int y, int c) { return 0.1f + 0.1f * float(x + kW * y) + 0.01f * float(c); }
 
 std::string write_image() {
-  const std::string path = (std::filesystem::temp_directory_path() / "bxdf_environment_op.pfm").string();
+  const std::string path = bxdf::test_support::process_temp_path("environment_op.pfm");
   std::ofstream f(path, std::ios::binary);
   f << "PF\n" << kW << " " << kH << "\n-1.0\n";  // PFM: rows bottom first
   for (int y = 0; y < kH; ++y)

@@ -3,6 +3,8 @@
 // and a Mix of two closures with a texture factor renders as the per-pixel mix of the two.
 #include <gtest/gtest.h>
 
+#include "../scratch_folder.h"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -25,7 +27,7 @@ namespace {
 
 // A float image as a PFM file (OpenImageIO reads it; rows bottom first, little endian).
 std::string write_pfm(const std::string& name, int w, int h, const std::vector<float>& rgb) {
-  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  const std::string path = bxdf::test_support::process_temp_path(name);
   std::ofstream f(path, std::ios::binary);
   f << "PF\n" << w << " " << h << "\n-1.0\n";
   f.write(reinterpret_cast<const char*>(rgb.data()), std::streamsize(rgb.size() * sizeof(float)));

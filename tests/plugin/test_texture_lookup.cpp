@@ -6,6 +6,8 @@
 // after the lookup, associated alpha), missing images magenta.
 #include <gtest/gtest.h>
 
+#include "../scratch_folder.h"
+
 #include <cmath>
 #include <cstdio>
 #include <array>
@@ -128,7 +130,7 @@ namespace {
 
 // An 8-bit RGBA PNG (straight alpha, row 0 at the top), written with OpenImageIO.
 std::string write_png(const std::string& name, int w, int h, const std::vector<unsigned char>& rgba) {
-  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  const std::string path = bxdf::test_support::process_temp_path(name);
   auto out = OIIO::ImageOutput::create(path);
   OIIO::ImageSpec spec(w, h, 4, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:UnassociatedAlpha", 1);
