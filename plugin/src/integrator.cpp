@@ -18,11 +18,16 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-// What a material graph needs per hit, reused along a path without touching the heap.
+// What a material graph needs per hit, reused along a path without touching the heap: per
+// thread, made once (the arena is reset at every hit).
 struct ShadingScratch {
   Vec3 registers[MaterialGraph::kMaxRegisters];
   ClosureArena arena;
 };
+ShadingScratch& shading_scratch() {
+  thread_local ShadingScratch scratch;
+  return scratch;
+}
 
 // Distance by which a new ray starts off the surface, relative to the coordinates' size: the
 // hit point comes from barycentrics, accurate to a few ulps, so ~250 ulps is safe.
@@ -196,8 +201,64 @@ void PathTracer::begin(const Ray& camera_ray, PathState* s) const {
   s->ray = camera_ray;
 }
 
+PathTracer::VertexFate PathTracer::fate(const PathState& s, uint32_t material) const {
+  // Past the transparent budget only this surface's emission counts (Cycles' PATH_RAY_
+  // TERMINATE_ON_NEXT_SURFACE); past max_bounces only its Transparent closures remain, which
+  // the path passes through with their summed weight (PATH_RAY_TERMINATE_AFTER_TRANSPARENT).
+  VertexFate f;
+  const bool ends_here = s.transparent_bounces > settings_.transparent_max_bounces;
+  f.scatters = !ends_here && s.bounce <= settings_.max_bounces;
+  f.may_pass = !ends_here && transparent_shadows_.transparent(material);
+  return f;
+}
+
+void PathTracer::prepare(const PathState& s, const Hit& hit, PreparedHit* prepared) const {
+  SurfacePoint& sp = prepared->sp;
+  sp = scene_.surface_point(hit);
+  const Vec3 wo = -s.ray.dir;
+  prepared->flipped = face_viewer(sp, wo, scene_.transmissive(sp.material));
+  // Reflection is judged against the shading normal, as Cycles' closures do: directions
+  // between the flat triangle and the smooth surface are lit (the terminator offset then lets
+  // their shadow rays out). Transmissive surfaces keep the geometric decision. The closures'
+  // normal is Cycles' valid-reflection one, in sp.ns's orientation.
+  const float viewer_side = dot(wo, sp.ng) < 0.0f ? -1.0f : 1.0f;
+  prepared->viewer_n = viewer_side_normal(sp, wo);
+  prepared->frame = Frame::from_normal_tangent(prepared->viewer_n * viewer_side, sp.tangent);
+  const MaterialGraph* graph = scene_.materials()[sp.material].graph.get();
+  prepared->runs_program = false;
+  if (!graph) return;
+  // The program runs where the closures are built, where the emission or (on camera rays) a
+  // holdout reads it; not where only a constant emission counts.
+  const VertexFate f = fate(s, sp.material);
+  prepared->runs_program = f.scatters || f.may_pass || !graph->emission_is_constant() ||
+                           (s.bounce == 0 && !graph->holdouts.empty());
+  if (prepared->runs_program)
+    prepared->ctx = ShadingContext{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, prepared->flipped, &sp};
+}
+
 void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
                          const Hit* found_hit) const {
+  if (!found_hit) return step(s, sampler, stats, nullptr, nullptr, nullptr);
+  PreparedHit prepared;
+  prepare(s, *found_hit, &prepared);
+  const Vec3* registers = nullptr;
+  if (prepared.runs_program) {
+    Vec3* r = shading_scratch().registers;
+    scene_.materials()[prepared.sp.material].graph->evaluate(prepared.ctx, r);
+    registers = r;
+  }
+  step(s, sampler, stats, found_hit, &prepared, registers);
+}
+
+void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
+                         const Hit& hit, const PreparedHit& prepared,
+                         const Vec3* registers) const {
+  step(s, sampler, stats, &hit, &prepared, registers);
+}
+
+void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats,
+                      const Hit* found_hit, const PreparedHit* prepared,
+                      const Vec3* registers) const {
   // One vertex of the path: what it carries from vertex to vertex lives in `s`, named here as
   // the path's own variables.
   RGB& L = s.L;
@@ -212,8 +273,7 @@ void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& st
   int& vertex = s.vertex;
   PathResult& result = s.result;
   const auto& lights = scene_.lights();
-  // Per thread, made once: graph registers and per-hit closures (reset at every hit).
-  thread_local ShadingScratch scratch;
+  ShadingScratch& scratch = shading_scratch();
   // Multiscatter GGX evaluates a 16-walk estimate seeded by the directions; salted per sample,
   // its error averages away over a pixel's samples instead of staying fixed where they share
   // the directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does.
@@ -224,9 +284,7 @@ void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& st
   const bool camera_ray = bounce == 0;
   const bool count_fully = camera_ray || specular_bounce;
   const bool found = found_hit != nullptr;
-  Hit hit;
-  if (found) hit = *found_hit;
-  L += beta * lights_along_ray(ray, found ? hit.t : kInfinity, camera_ray, count_fully,
+  L += beta * lights_along_ray(ray, found ? found_hit->t : kInfinity, camera_ray, count_fully,
                                prev_pdf);
   if (!found) {
     // Escaped: the world and the suns with an angle. Counted in full where light sampling
@@ -238,46 +296,31 @@ void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& st
     return end_path();
   }
   if (vertex == 0) result.alpha = 1.0f;
+  const Hit& hit = *found_hit;
 
-  SurfacePoint sp = scene_.surface_point(hit);
+  const SurfacePoint& sp = prepared->sp;  // turned towards the viewer (face_viewer)
   const Vec3 wo = -ray.dir;
   const Material& mat = scene_.materials()[sp.material];
-
   const bool transmissive = scene_.transmissive(sp.material);
-  const bool flipped = face_viewer(sp, wo, transmissive);
-  // Reflection is judged against the shading normal, as Cycles' closures do: directions
-  // between the flat triangle and the smooth surface are lit (the terminator offset then lets
-  // their shadow rays out). Transmissive surfaces keep the geometric decision. The closures'
-  // normal is Cycles' valid-reflection one, in sp.ns's orientation.
-  const float viewer_side = dot(wo, sp.ng) < 0.0f ? -1.0f : 1.0f;
-  const Vec3 viewer_n = viewer_side_normal(sp, wo);  // once per hit: three uses below
-  const Vec3 closure_n = viewer_n * viewer_side;
-  BSDF bsdf(Frame::from_normal_tangent(closure_n, sp.tangent), transmissive ? sp.ng : closure_n);
+  const Vec3& viewer_n = prepared->viewer_n;
+  BSDF bsdf(prepared->frame, transmissive ? sp.ng : prepared->frame.n);
   RGB emitted = mat.emission;
-  // Past the transparent budget only this surface's emission counts (Cycles' PATH_RAY_
-  // TERMINATE_ON_NEXT_SURFACE); past max_bounces only its Transparent closures remain, which
-  // the path passes through with their summed weight (PATH_RAY_TERMINATE_AFTER_TRANSPARENT).
-  const bool ends_here = transparent_bounces > settings_.transparent_max_bounces;
-  const bool scatters = !ends_here && bounce <= settings_.max_bounces;
-  const bool may_pass = !ends_here && transparent_shadows_.transparent(sp.material);
+  const VertexFate f = fate(s, sp.material);
+  const bool scatters = f.scatters, may_pass = f.may_pass;
   if (mat.graph) {
-    // A node material: run its program at this point, then build its closures in place
-    // (not where only emission counts).
-    if (scatters || may_pass || !mat.graph->emission_is_constant()) {
-      const ShadingContext ctx{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped, &sp};
-      mat.graph->evaluate(ctx, scratch.registers);
-    }
+    // A node material: its program has run at this point (prepared->runs_program wherever
+    // what follows reads it); build its closures in place (not where only emission counts).
     if (camera_ray && !mat.graph->holdouts.empty()) {
       // Cycles' holdout: on camera rays the pixel turns transparent by the holdout weight
       // (with a transparent film), and a full holdout ends the path before its emission.
-      const RGB h = mat.graph->holdout(scratch.registers);
+      const RGB h = mat.graph->holdout(registers);
       if (settings_.transparent_background) result.alpha -= std::min((h * beta).average(), 1.0f);
       if (h.r >= 1.0f && h.g >= 1.0f && h.b >= 1.0f) return end_path();
     }
-    if (!mat.graph->emission_is_constant()) emitted = mat.graph->emitted(scratch.registers);
+    if (!mat.graph->emission_is_constant()) emitted = mat.graph->emitted(registers);
     if (scatters || may_pass) {
       scratch.arena.reset();
-      mat.graph->add_closures(scratch.registers, sp.tangent, scratch.arena, bsdf);
+      mat.graph->add_closures(registers, sp.tangent, scratch.arena, bsdf);
     }
   } else {
     for (const BxDFPtr& c : mat.components) bsdf.add(c.get());

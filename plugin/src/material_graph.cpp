@@ -22,170 +22,196 @@ Vec3 rotate_around_axis(const Vec3& p, const Vec3& axis, float angle) {
   return p * c + cross(axis, p) * s + axis * (dot(axis, p) * (1.0f - c));
 }
 
-void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* r) const {
-  const Scene& scene = *ctx.scene;
-  // The surface each node reads: the hit, or the bump offsets p + dpdx, p + dpdy (with the
-  // hit's barycentrics moved along, so that attributes follow, as Cycles' bump_dx nodes do).
-  // Chosen per node rather than copied into arrays up front: that copy read ctx's fields back
-  // before the caller's stores of them had landed (a store-forwarding stall at every hit).
-  Uninitialised<Hit, 2> offset_storage;  // filled only for bumps: no stores at other hits
-  Hit* const offset_hits = offset_storage.items;
-  Uninitialised<Vec3, 2> offset_point_storage;
-  Vec3* const offset_points = offset_point_storage.items;
+// Where one hit of a batch reads the surface: the hit, or the bump offsets p + dpdx, p + dpdy
+// (with the hit's barycentrics moved along, so that attributes follow, as Cycles' bump_dx nodes
+// do); filled only for graphs with bumps (reads_offsets).
+struct MaterialGraph::HitSurfaces {
+  Hit offset_hits[2];
+  Vec3 offset_points[2];
   Vec3 dpdx, dpdy;
-  if (reads_offsets) {
-    Vec3 a, b;
-    coordinate_system(ctx.ng, &a, &b);
-    const float scale = std::max({1.0f, std::fabs(ctx.p.x), std::fabs(ctx.p.y), std::fabs(ctx.p.z)});
-    dpdx = a * (kBumpOffset * scale);
-    dpdy = b * (kBumpOffset * scale);
-    offset_hits[0] = scene.offset_hit(*ctx.hit, dpdx);
-    offset_hits[1] = scene.offset_hit(*ctx.hit, dpdy);
-    offset_points[0] = ctx.p + dpdx;
-    offset_points[1] = ctx.p + dpdy;
-  }
-  if (default_tangent_reg >= 0) {
-    // Cycles' Tangent node default, made perpendicular to N as the node does.
-    Vec3 t = scene.radial_tangent(*ctx.hit, ctx.p);
-    if (normalize_direction(t)) {
-      Vec3 side = cross(t, ctx.n);
-      t = normalize_direction(side) ? cross(ctx.n, side) : Vec3(0.0f, 0.0f, 0.0f);
+};
+
+void MaterialGraph::evaluate(const ShadingContext& ctx, Vec3* registers) const {
+  evaluate_batch(&ctx, &registers, 1);
+}
+
+void MaterialGraph::evaluate_batch(const ShadingContext* ctxs, Vec3* const* registers, int n) const {
+  for (int first = 0; first < n; first += kBatchChunk) {
+    const int m = std::min(kBatchChunk, n - first);
+    const ShadingContext* const chunk_ctxs = ctxs + first;
+    Vec3* const* const chunk_registers = registers + first;
+    // Left uninitialised: only graphs with bumps write (and read) them.
+    Uninitialised<HitSurfaces, kBatchChunk> surface_storage;
+    HitSurfaces* const surfaces = surface_storage.items;
+    for (int k = 0; k < m; ++k) {
+      const ShadingContext& ctx = chunk_ctxs[k];
+      Vec3* const r = chunk_registers[k];
+      if (reads_offsets) {
+        HitSurfaces& hs = surfaces[k];
+        Vec3 a, b;
+        coordinate_system(ctx.ng, &a, &b);
+        const float scale = std::max({1.0f, std::fabs(ctx.p.x), std::fabs(ctx.p.y), std::fabs(ctx.p.z)});
+        hs.dpdx = a * (kBumpOffset * scale);
+        hs.dpdy = b * (kBumpOffset * scale);
+        hs.offset_hits[0] = ctx.scene->offset_hit(*ctx.hit, hs.dpdx);
+        hs.offset_hits[1] = ctx.scene->offset_hit(*ctx.hit, hs.dpdy);
+        hs.offset_points[0] = ctx.p + hs.dpdx;
+        hs.offset_points[1] = ctx.p + hs.dpdy;
+      }
+      if (default_tangent_reg >= 0) {
+        // Cycles' Tangent node default, made perpendicular to N as the node does.
+        Vec3 t = ctx.scene->radial_tangent(*ctx.hit, ctx.p);
+        if (normalize_direction(t)) {
+          Vec3 side = cross(t, ctx.n);
+          t = normalize_direction(side) ? cross(ctx.n, side) : Vec3(0.0f, 0.0f, 0.0f);
+        }
+        r[default_tangent_reg] = t;
+      }
     }
-    r[default_tangent_reg] = t;
+    // Node by node, each over the chunk's hits: the hits' work is independent, so one hit's
+    // latency chains (texel loads, the normal map's square roots and divisions) overlap the
+    // next hit's instead of following one another.
+    for (const GraphNode& node : nodes)
+      for (int k = 0; k < m; ++k)
+        run_node(node, chunk_ctxs[k], chunk_registers[k], surfaces[k]);
   }
-  for (const GraphNode& node : nodes) {
-    auto in = [&](int i) { return read_input(node.in[size_t(i)], r); };
-    auto in_float = [&](int i) { return read_float(node.in[size_t(i)], r); };
-    Vec3* out = r + node.out;
-    const bool at_hit = node.offset == 0;
-    const Hit& hit = at_hit ? *ctx.hit : offset_hits[node.offset - 1];
-    const Vec3& p = at_hit ? ctx.p : offset_points[node.offset - 1];
-    switch (node.op) {
-      case GraphOp::Const: out[0] = in(0); break;
-      case GraphOp::UV: out[0] = scene.uv(hit, node.index); break;
-      case GraphOp::Generated: out[0] = scene.generated(hit, p); break;
-      case GraphOp::Object: out[0] = scene.object_position(hit, p); break;
-      case GraphOp::Position: out[0] = p; break;
-      case GraphOp::Normal: out[0] = ctx.n; break;
-      case GraphOp::Incoming: out[0] = ctx.incoming; break;
-      case GraphOp::Image: {
-        if (node.grouped) break;  // looked up with its group's first node
-        const Vec3 uv = in(0);
-        const Texture& texture = *textures[size_t(node.index)];
-        if (node.group_count == 0) {
-          texture.lookup(uv.x, uv.y, node.flag, out);
-          break;
-        }
-        const TexelFootprint footprint = texture.footprint(uv.x, uv.y);
-        if (node.texture_group >= 0) {
-          const size_t at = size_t(node.group_first);
-          texture_groups[size_t(node.texture_group)]->lookup(footprint, &group_unassociate[at],
-                                                              &group_outputs[at], r);
-          break;
-        }
-        for (int k = 0; k < node.group_count; ++k) {
-          const GraphNode& member = nodes[size_t(image_groups[size_t(node.group_first + k)])];
-          textures[size_t(member.index)]->lookup(footprint, member.flag, r + member.out);
-        }
+}
+
+void MaterialGraph::run_node(const GraphNode& node, const ShadingContext& ctx, Vec3* r,
+                             const HitSurfaces& surfaces) const {
+  const Scene& scene = *ctx.scene;
+  auto in = [&](int i) { return read_input(node.in[size_t(i)], r); };
+  auto in_float = [&](int i) { return read_float(node.in[size_t(i)], r); };
+  Vec3* out = r + node.out;
+  const bool at_hit = node.offset == 0;
+  const Hit& hit = at_hit ? *ctx.hit : surfaces.offset_hits[node.offset - 1];
+  const Vec3& p = at_hit ? ctx.p : surfaces.offset_points[node.offset - 1];
+  switch (node.op) {
+    case GraphOp::Const: out[0] = in(0); break;
+    case GraphOp::UV: out[0] = scene.uv(hit, node.index); break;
+    case GraphOp::Generated: out[0] = scene.generated(hit, p); break;
+    case GraphOp::Object: out[0] = scene.object_position(hit, p); break;
+    case GraphOp::Position: out[0] = p; break;
+    case GraphOp::Normal: out[0] = ctx.n; break;
+    case GraphOp::Incoming: out[0] = ctx.incoming; break;
+    case GraphOp::Image: {
+      if (node.grouped) break;  // looked up with its group's first node
+      const Vec3 uv = in(0);
+      const Texture& texture = *textures[size_t(node.index)];
+      if (node.group_count == 0) {
+        texture.lookup(uv.x, uv.y, node.flag, out);
         break;
       }
-      case GraphOp::Environment: {
-        // Cycles' svm_node_tex_environment: the vector normalised (zero stays zero), then
-        // projected to image coordinates and looked up as an Image Texture is.
-        Vec3 dir = in(0);
-        if (!normalize_direction(dir)) dir = Vec3(0.0f, 0.0f, 0.0f);
-        const Point2 uv = EnvironmentProjection(node.mode) == EnvironmentProjection::MirrorBall
-                              ? direction_to_mirrorball(dir)
-                              : direction_to_equirect(dir);
-        textures[size_t(node.index)]->lookup(uv.x, uv.y, node.flag, out);
+      const TexelFootprint footprint = texture.footprint(uv.x, uv.y);
+      if (node.texture_group >= 0) {
+        const size_t at = size_t(node.group_first);
+        texture_groups[size_t(node.texture_group)]->lookup(footprint, &group_unassociate[at],
+                                                            &group_outputs[at], r);
         break;
       }
-      case GraphOp::Transform:
-        out[0] = transform(matrices[size_t(node.index)], TransformKind(node.mode), in(0), node.flag);
-        break;
-      case GraphOp::MixRGB:
-        out[0] = mix_rgb(MixBlend(node.mode), in_float(0), in(1), in(2), node.clamp);
-        break;
-      case GraphOp::Math:
-        out[0] = splat(math(MathOp(node.mode), in_float(0), in_float(1), in_float(2), node.clamp));
-        break;
-      case GraphOp::VectorMath: {
-        float value = 0.0f;
-        vector_math(VectorMathOp(node.mode), in(0), in(1), in(2), in_float(3), &out[0], &value);
-        out[1] = splat(value);
+      for (int k = 0; k < node.group_count; ++k) {
+        const GraphNode& member = nodes[size_t(image_groups[size_t(node.group_first + k)])];
+        textures[size_t(member.index)]->lookup(footprint, member.flag, r + member.out);
+      }
+      break;
+    }
+    case GraphOp::Environment: {
+      // Cycles' svm_node_tex_environment: the vector normalised (zero stays zero), then
+      // projected to image coordinates and looked up as an Image Texture is.
+      Vec3 dir = in(0);
+      if (!normalize_direction(dir)) dir = Vec3(0.0f, 0.0f, 0.0f);
+      const Point2 uv = EnvironmentProjection(node.mode) == EnvironmentProjection::MirrorBall
+                            ? direction_to_mirrorball(dir)
+                            : direction_to_equirect(dir);
+      textures[size_t(node.index)]->lookup(uv.x, uv.y, node.flag, out);
+      break;
+    }
+    case GraphOp::Transform:
+      out[0] = transform(matrices[size_t(node.index)], TransformKind(node.mode), in(0), node.flag);
+      break;
+    case GraphOp::MixRGB:
+      out[0] = mix_rgb(MixBlend(node.mode), in_float(0), in(1), in(2), node.clamp);
+      break;
+    case GraphOp::Math:
+      out[0] = splat(math(MathOp(node.mode), in_float(0), in_float(1), in_float(2), node.clamp));
+      break;
+    case GraphOp::VectorMath: {
+      float value = 0.0f;
+      vector_math(VectorMathOp(node.mode), in(0), in(1), in(2), in_float(3), &out[0], &value);
+      out[1] = splat(value);
+      break;
+    }
+    case GraphOp::Invert: out[0] = invert(in_float(0), in(1)); break;
+    case GraphOp::Gamma: out[0] = gamma(in(0), in_float(1)); break;
+    case GraphOp::BrightContrast: out[0] = bright_contrast(in(0), in_float(1), in_float(2)); break;
+    case GraphOp::HSV:
+      out[0] = hsv(in_float(0), in_float(1), in_float(2), in_float(3), in(4));
+      break;
+    case GraphOp::Separate: {
+      const Vec3 v = in(0);
+      out[0] = splat(v.x);
+      out[1] = splat(v.y);
+      out[2] = splat(v.z);
+      break;
+    }
+    case GraphOp::Combine: out[0] = Vec3(in_float(0), in_float(1), in_float(2)); break;
+    case GraphOp::ColorRamp: {
+      float alpha = 0.0f;
+      color_ramp(ramps[size_t(node.index)], in_float(0), &out[0], &alpha);
+      out[1] = splat(alpha);
+      break;
+    }
+    case GraphOp::Fresnel:
+      out[0] = splat(fresnel_node(in_float(0), ctx.incoming,
+                                  node.in[1].reg < 0 ? ctx.n : in(1), ctx.backfacing));
+      break;
+    case GraphOp::LayerWeight: {
+      float fresnel = 0.0f, facing = 0.0f;
+      layer_weight(in_float(0), ctx.incoming, node.in[1].reg < 0 ? ctx.n : in(1),
+                   ctx.backfacing, &fresnel, &facing);
+      out[0] = splat(fresnel);
+      out[1] = splat(facing);
+      break;
+    }
+    case GraphOp::NormalMap: {
+      Vec3 tangent;
+      float sign = 1.0f;
+      if (!scene.tangent(hit, node.index, &tangent, &sign)) {
+        out[0] = ctx.n;  // Cycles: no tangent attribute, unperturbed normal
         break;
       }
-      case GraphOp::Invert: out[0] = invert(in_float(0), in(1)); break;
-      case GraphOp::Gamma: out[0] = gamma(in(0), in_float(1)); break;
-      case GraphOp::BrightContrast: out[0] = bright_contrast(in(0), in_float(1), in_float(2)); break;
-      case GraphOp::HSV:
-        out[0] = hsv(in_float(0), in_float(1), in_float(2), in_float(3), in(4));
-        break;
-      case GraphOp::Separate: {
-        const Vec3 v = in(0);
-        out[0] = splat(v.x);
-        out[1] = splat(v.y);
-        out[2] = splat(v.z);
-        break;
-      }
-      case GraphOp::Combine: out[0] = Vec3(in_float(0), in_float(1), in_float(2)); break;
-      case GraphOp::ColorRamp: {
-        float alpha = 0.0f;
-        color_ramp(ramps[size_t(node.index)], in_float(0), &out[0], &alpha);
-        out[1] = splat(alpha);
-        break;
-      }
-      case GraphOp::Fresnel:
-        out[0] = splat(fresnel_node(in_float(0), ctx.incoming,
-                                    node.in[1].reg < 0 ? ctx.n : in(1), ctx.backfacing));
-        break;
-      case GraphOp::LayerWeight: {
-        float fresnel = 0.0f, facing = 0.0f;
-        layer_weight(in_float(0), ctx.incoming, node.in[1].reg < 0 ? ctx.n : in(1),
-                     ctx.backfacing, &fresnel, &facing);
-        out[0] = splat(fresnel);
-        out[1] = splat(facing);
-        break;
-      }
-      case GraphOp::NormalMap: {
-        Vec3 tangent;
-        float sign = 1.0f;
-        if (!scene.tangent(hit, node.index, &tangent, &sign)) {
-          out[0] = ctx.n;  // Cycles: no tangent attribute, unperturbed normal
-          break;
-        }
-        // Cycles composes the mapped normal in object space (tangent and smooth normal there)
-        // and moves it to world space as a normal; it also makes every closure normal a valid
-        // reflection, done here once per map.
-        // The smooth normal is unnormalised (shorter between differing vertex normals), and
-        // keeps its length in object space as Cycles' object-space interpolation has it.
-        const Vec3 smooth = at_hit && ctx.point ? ctx.point->smooth_normal : scene.smooth_normal(hit);
-        Vec3 normal = scene.normal_to_object(hit, smooth);
-        const float object_length2 = length_squared(normal);
-        if (object_length2 > 0.0f)
-          normal = normal * std::sqrt(length_squared(smooth) / object_length2);
-        // Normalised once, after the transform: Cycles' safe_normalize before it gives the
-        // same direction (the transform is linear).
-        Vec3 mapped = scene.normal_to_world(hit, normal_map_direction(in(1), tangent, sign, normal));
-        if (!normalize_direction(mapped)) mapped = Vec3(0.0f, 0.0f, 0.0f);
-        out[0] = ensure_valid_reflection(
-            ctx.ng, ctx.incoming, normal_map_finish(mapped, in_float(0), ctx.n, ctx.backfacing));
-        break;
-      }
-      case GraphOp::Bump: {
-        BumpInputs b;
-        b.strength = in_float(0);
-        b.distance = in_float(1);
-        b.height = in_float(2);
-        b.normal = node.in[3].reg < 0 ? ctx.n : in(3);
-        b.height_x = in_float(4);
-        b.height_y = in_float(5);
-        b.dpdx = dpdx;
-        b.dpdy = dpdy;
-        b.invert = node.flag;
-        out[0] = bump_normal(b, ctx.ng, ctx.incoming);
-        break;
-      }
+      // Cycles composes the mapped normal in object space (tangent and smooth normal there)
+      // and moves it to world space as a normal; it also makes every closure normal a valid
+      // reflection, done here once per map.
+      // The smooth normal is unnormalised (shorter between differing vertex normals), and
+      // keeps its length in object space as Cycles' object-space interpolation has it.
+      const Vec3 smooth = at_hit && ctx.point ? ctx.point->smooth_normal : scene.smooth_normal(hit);
+      Vec3 normal = scene.normal_to_object(hit, smooth);
+      const float object_length2 = length_squared(normal);
+      if (object_length2 > 0.0f)
+        normal = normal * std::sqrt(length_squared(smooth) / object_length2);
+      // Normalised once, after the transform: Cycles' safe_normalize before it gives the
+      // same direction (the transform is linear).
+      Vec3 mapped = scene.normal_to_world(hit, normal_map_direction(in(1), tangent, sign, normal));
+      if (!normalize_direction(mapped)) mapped = Vec3(0.0f, 0.0f, 0.0f);
+      out[0] = ensure_valid_reflection(
+          ctx.ng, ctx.incoming, normal_map_finish(mapped, in_float(0), ctx.n, ctx.backfacing));
+      break;
+    }
+    case GraphOp::Bump: {
+      BumpInputs b;
+      b.strength = in_float(0);
+      b.distance = in_float(1);
+      b.height = in_float(2);
+      b.normal = node.in[3].reg < 0 ? ctx.n : in(3);
+      b.height_x = in_float(4);
+      b.height_y = in_float(5);
+      // (Every graph with a bump reads the offsets; the zero step is a hand-built graph's.)
+      b.dpdx = reads_offsets ? surfaces.dpdx : Vec3();
+      b.dpdy = reads_offsets ? surfaces.dpdy : Vec3();
+      b.invert = node.flag;
+      out[0] = bump_normal(b, ctx.ng, ctx.incoming);
+      break;
     }
   }
 }

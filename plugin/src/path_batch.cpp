@@ -4,6 +4,12 @@
 
 namespace bxdf::render {
 
+PathBatch::PathBatch(const Scene& scene, const PathTracer& tracer) : scene_(scene), tracer_(tracer) {
+  for (const Material& m : scene.materials())
+    if (m.graph) registers_per_path_ = std::max(registers_per_path_, size_t(m.graph->num_registers));
+  register_block_.resize(registers_per_path_ * size_t(kSize));
+}
+
 void PathBatch::add(const Sample& sample, const Ray& camera_ray) {
   samples_[size_t(count_)] = sample;
   camera_rays_[size_t(count_)] = camera_ray;
@@ -25,19 +31,60 @@ void PathBatch::prefetch_shading(int live) const {
   }
 }
 
+int PathBatch::advance_live(int live, PathStats& stats) {
+  for (int a = 0; a < live; ++a) {
+    pending_[size_t(a)] = 0;
+    registers_[size_t(a)] = nullptr;
+    if (!found_[size_t(a)]) continue;
+    PreparedHit& p = prepared_[size_t(a)];
+    tracer_.prepare(paths_[size_t(live_[size_t(a)])], hits_[size_t(a)], &p);
+    pending_[size_t(a)] = p.runs_program;
+  }
+  // Each program over its hits (few materials per batch: one scan per program).
+  for (int a = 0; a < live; ++a) {
+    if (!pending_[size_t(a)]) continue;
+    const MaterialGraph* graph = scene_.materials()[prepared_[size_t(a)].sp.material].graph.get();
+    int n = 0;
+    for (int b = a; b < live; ++b) {
+      if (!pending_[size_t(b)] ||
+          scene_.materials()[prepared_[size_t(b)].sp.material].graph.get() != graph)
+        continue;
+      pending_[size_t(b)] = 0;
+      Vec3* r = register_block_.data() + size_t(b) * registers_per_path_;
+      registers_[size_t(b)] = r;
+      program_ctxs_[size_t(n)] = prepared_[size_t(b)].ctx;
+      program_registers_[size_t(n)] = r;
+      ++n;
+    }
+    graph->evaluate_batch(program_ctxs_.data(), program_registers_.data(), n);
+  }
+  int still = 0;
+  for (int a = 0; a < live; ++a) {
+    const int k = live_[size_t(a)];
+    PathState& path = paths_[size_t(k)];
+    if (found_[size_t(a)])
+      tracer_.advance(path, sampler(k), stats, hits_[size_t(a)], prepared_[size_t(a)],
+                      registers_[size_t(a)]);
+    else
+      tracer_.advance(path, sampler(k), stats, nullptr);
+    if (!path.done) live_[size_t(still++)] = k;
+  }
+  return still;
+}
+
 void PathBatch::trace(PathStats& stats) {
   for (int k = 0; k < count_; k += Scene::kCameraPacket)
     scene_.intersect_camera_rays(&camera_rays_[size_t(k)], std::min(Scene::kCameraPacket, count_ - k),
                                  &camera_hits_[size_t(k)]);
-  int live = 0;
   for (int k = 0; k < count_; ++k) {
-    PathState& path = paths_[size_t(k)];
-    tracer_.begin(camera_rays_[size_t(k)], &path);
+    tracer_.begin(camera_rays_[size_t(k)], &paths_[size_t(k)]);
     ++stats.rays;
     const CameraHit& h = camera_hits_[size_t(k)];
-    tracer_.advance(path, sampler(k), stats, h.found ? &h.hit : nullptr);
-    if (!path.done) live_[size_t(live++)] = k;
+    live_[size_t(k)] = k;
+    found_[size_t(k)] = h.found;
+    if (h.found) hits_[size_t(k)] = h.hit;
   }
+  int live = advance_live(count_, stats);
   while (live > 0) {
     for (int a = 0; a < live; ++a) {
       const PathState& path = paths_[size_t(live_[size_t(a)])];
@@ -47,14 +94,7 @@ void PathBatch::trace(PathStats& stats) {
     stats.rays += uint64_t(live);
     scene_.intersect_stream(rays_.data(), camera_.data(), live, hits_.data(), found_.data());
     prefetch_shading(live);
-    int still = 0;
-    for (int a = 0; a < live; ++a) {
-      const int k = live_[size_t(a)];
-      PathState& path = paths_[size_t(k)];
-      tracer_.advance(path, sampler(k), stats, found_[size_t(a)] ? &hits_[size_t(a)] : nullptr);
-      if (!path.done) live_[size_t(still++)] = k;
-    }
-    live = still;
+    live = advance_live(live, stats);
   }
   for (int k = 0; k < count_; ++k) results_[size_t(k)] = tracer_.finish(paths_[size_t(k)], stats);
 }

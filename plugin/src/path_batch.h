@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "bxdf/render/integrator.h"
 #include "bxdf/render/scene.h"
@@ -26,7 +27,7 @@ class PathBatch {
     uint32_t pixel_seed, index;
   };
 
-  PathBatch(const Scene& scene, const PathTracer& tracer) : scene_(scene), tracer_(tracer) {}
+  PathBatch(const Scene& scene, const PathTracer& tracer);
 
   bool full() const { return count_ == kSize; }
   int size() const { return count_; }
@@ -43,6 +44,11 @@ class PathBatch {
   }
   // Starts loading what shading the live paths' hits reads.
   void prefetch_shading(int live) const;
+  // Advances the live paths by one vertex each (hits_/found_ per live path): prepares every
+  // hit, runs each node material's program over all of its hits at once (the hits' work
+  // overlaps: MaterialGraph::evaluate_batch), then advances the paths in order. Returns how
+  // many remain live (live_ compacted).
+  int advance_live(int live, PathStats& stats);
 
   const Scene& scene_;
   const PathTracer& tracer_;
@@ -58,6 +64,16 @@ class PathBatch {
   std::array<uint8_t, kSize> camera_;
   std::array<uint8_t, kSize> found_;
   std::array<Hit, kSize> hits_;
+  // Per live path: its prepared hit, and where its program's registers are (null: it did not
+  // run); the registers of every path in one block, the scene's largest program per path.
+  std::array<PreparedHit, kSize> prepared_;
+  std::array<const Vec3*, kSize> registers_;
+  std::vector<Vec3> register_block_;
+  size_t registers_per_path_ = 0;
+  // One program's hits at a time, gathered for evaluate_batch.
+  std::array<ShadingContext, kSize> program_ctxs_;
+  std::array<Vec3*, kSize> program_registers_;
+  std::array<uint8_t, kSize> pending_;
 };
 
 }  // namespace bxdf::render

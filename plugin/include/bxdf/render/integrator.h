@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "bxdf/render/material_graph.h"
 #include "bxdf/render/ray.h"
 #include "bxdf/render/scene.h"
 #include "bxdf/render/transparent_shadows.h"
@@ -64,6 +65,21 @@ struct PathState {
   bool done = false;
 };
 
+// What advance() works out at a hit before the material's program runs: the surface point,
+// turned towards the viewer, and whether the program runs there (not where only a constant
+// emission counts) with what it reads. PathBatch prepares its paths' hits together and runs
+// their programs hit-batch-wise (MaterialGraph::evaluate_batch).
+struct PreparedHit {
+  SurfacePoint sp;
+  bool flipped = false;       // sp's normals were turned towards the viewer
+  // Cycles' valid-reflection normal on the viewer's side (viewer_side_normal), and the
+  // closures' frame about it in sp.ns's orientation.
+  Vec3 viewer_n;
+  Frame frame;
+  bool runs_program = false;  // a node material whose program this hit needs
+  ShadingContext ctx;         // the program's inputs (when runs_program); points at sp
+};
+
 class PathTracer {
  public:
   // The scene must be committed. Throws ParameterError for max_bounces < 0.
@@ -80,11 +96,24 @@ class PathTracer {
   // (stats.rays counted by the caller; camera rays are those of s.bounce == 0) advance with its
   // hit (null: the ray escaped) until s.done, then finish.
   void begin(const Ray& camera_ray, PathState* s) const;
-  void advance(PathState& s, const PathSampler& sampler, PathStats& stats,
-               const Hit* hit) const;
+  void advance(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit* hit) const;
+  // advance() in two steps, for batches: prepare the hit (s's next vertex; `hit` must outlive
+  // `prepared`), run the program where prepared->runs_program (into `registers`), then advance
+  // with both. The same path as advance(s, sampler, stats, &hit).
+  void prepare(const PathState& s, const Hit& hit, PreparedHit* prepared) const;
+  void advance(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit& hit,
+               const PreparedHit& prepared, const Vec3* registers) const;
   PathResult finish(PathState& s, PathStats& stats) const;
 
  private:
+  // Whether a vertex on `material` scatters, or may only pass its Transparent closures.
+  struct VertexFate {
+    bool scatters = false, may_pass = false;
+  };
+  VertexFate fate(const PathState& s, uint32_t material) const;
+  // One vertex: `prepared` and `registers` (its program's, where it ran) for a found hit.
+  void step(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit* hit,
+            const PreparedHit* prepared, const Vec3* registers) const;
   // `viewer_n`: viewer_side_normal of the hit (computed once per hit by trace).
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
                        const Vec3& viewer_n, const std::array<float, 3>& u,

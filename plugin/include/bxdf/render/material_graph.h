@@ -142,8 +142,13 @@ class MaterialGraph {
   // shaded after).
   void prefetch_texels(const Scene& scene, const Hit& hit) const;
 
-  // Runs the program; `registers` holds kMaxRegisters.
+  // Runs the program; `registers` holds kMaxRegisters (num_registers are written).
   void evaluate(const ShadingContext& ctx, Vec3* registers) const;
+  // Runs the program at n hits, hit k's registers at registers[k]: node by node over chunks of
+  // kBatchChunk hits, so that the hits' independent work overlaps. Each hit's registers are
+  // what evaluate() gives it, bit for bit.
+  static constexpr int kBatchChunk = 8;
+  void evaluate_batch(const ShadingContext* ctxs, Vec3* const* registers, int n) const;
   RGB emitted(const Vec3* registers) const;
   // Holdout closures' total weight (Cycles makes the pixel transparent by it on camera rays).
   std::vector<GraphInput> holdouts;
@@ -155,6 +160,11 @@ class MaterialGraph {
                     BSDF& bsdf) const;
   // Flags of the union of the closures' models (from their constant or default parameters).
   uint32_t flags() const;
+
+ private:
+  struct HitSurfaces;
+  void run_node(const GraphNode& node, const ShadingContext& ctx, Vec3* registers,
+                const HitSurfaces& surfaces) const;
 };
 
 // Cycles' colour → float: Rec.709 luminance with its coefficients.
