@@ -10,6 +10,7 @@
 //   bxdf_bench_textured [--threads T] [--spp N] [--size W] [--repeat R] [--only constant|textured]
 // (--only renders one variant, for profiling it alone.)
 #include <OpenImageIO/imageio.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -42,7 +43,9 @@ std::string write_texture(const std::string& name, int channels, float (*texel)(
       for (int c = 0; c < channels; ++c)
         data[(size_t(y) * n + size_t(x)) * size_t(channels) + size_t(c)] =
             static_cast<unsigned char>(std::lround(255.0f * texel(x, y, c)));
-  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  // Named after the process: two benchmarks run at once (an A/B on two cores) keep apart.
+  const std::string path =
+      (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string();
   auto out = OIIO::ImageOutput::create(path);
   if (!out || !out->open(path, OIIO::ImageSpec(n, n, channels, OIIO::TypeDesc::UINT8)) ||
       !out->write_image(OIIO::TypeDesc::UINT8, data.data()) || !out->close()) {

@@ -226,7 +226,9 @@ void PathTracer::prepare(const PathState& s, const Hit& hit, PreparedHit* prepar
   prepared->frame = Frame::from_normal_tangent(prepared->viewer_n * viewer_side, sp.tangent);
   const MaterialGraph* graph = scene_.materials()[sp.material].graph.get();
   prepared->runs_program = false;
-  if (!graph) return;
+  // A graph of constants only (no nodes; Cycles' default tangent is a node's) has nothing to
+  // run: its closures and emission read no register.
+  if (!graph || (graph->nodes.empty() && graph->default_tangent_reg < 0)) return;
   // The program runs where the closures are built, where the emission or (on camera rays) a
   // holdout reads it; not where only a constant emission counts.
   const VertexFate f = fate(s, sp.material);
