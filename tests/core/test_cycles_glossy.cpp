@@ -119,9 +119,10 @@ TEST(CyclesGlossy, MatchesCyclesFormula) {
           const double expected = 0.9 * ref.f(wo, wi);
           // The model works in float: its unit inputs and half vector carry ~1e-7 of error,
           // which 1/|wo + wi| (small near grazing) and the slope x/α (one α tiny when
-          // a = 1: αx = r²/100) magnify.
+          // a = 1: αx = r²/100) magnify. Beckmann's visible-normal sampler puts wi deep inside
+          // those lobes, where the magnification is largest (up to ~5e-7/(α|wo + wi|)).
           const double rel_tol =
-              2e-4 + 3e-7 / (std::min(ref.alpha_x, ref.alpha_y) * double(length(wo + wi)));
+              2e-4 + 6e-7 / (std::min(ref.alpha_x, ref.alpha_y) * double(length(wo + wi)));
           nonzero += expected > 1e-3;
           EXPECT_NEAR(m->f(wo, wi).g, expected, rel_tol * expected + 1e-7);
           // Two-sided, like Cycles with its normal turned to the viewer.

@@ -1,12 +1,23 @@
 // The Beckmann distribution, anisotropic:
 // D = exp(−tan²θh (cos²φ/αx² + sin²φ/αy²)) / (π αx αy cos⁴θh).
-// Sampling draws wh with density D(wh) cos θh (pbrt-v3 with sampleVisibleArea off).
+// Sampling draws the normals visible from wo (Heitz and d'Eon 2014, with Jakob's numerical
+// inversion of the slope CDF, as Mitsuba does), density D G1(wo) max(0, wo·wh) / cos θo with
+// Smith's exact G1: fewer samples on facets wo cannot see than D cos θh drew, as Cycles' own
+// Beckmann sampler does. lambda() stays Walter's rational fit, which the models' f use (Cycles'
+// formula); the pdf needs the exact one, whose density integrates to 1.
 #pragma once
+
+#include <cmath>
 
 #include "bxdf/microfacet/common.h"
 
 namespace bxdf {
 namespace microfacet {
+
+// Slopes (x, y) of a unit-roughness Beckmann normal drawn from the normals visible from a
+// direction at polar angle θ in the xz plane (beckmann_visible_slopes.cpp).
+void beckmann_visible_slopes(float cos_theta, float sin_theta, Point2 u, float* slope_x,
+                             float* slope_y);
 
 struct Beckmann {
   float alpha_x = 0.3f, alpha_y = 0.3f;
@@ -31,21 +42,39 @@ struct Beckmann {
   BXDF_KERNEL float lambda(const Vec3& w) const { return beckmann_lambda(w, alpha_x, alpha_y); }
   BXDF_KERNEL float G1(const Vec3& w) const { return 1.0f / (1.0f + lambda(w)); }
 
-  Vec3 sample_wh(const Vec3& /*wo*/, Point2 u) const {
-    // φ: the marginal of D cos θ is ∝ 1/(cos²φ/αx² + sin²φ/αy²), which the map
-    // tan φ = (αy/αx) tan(2πu2) produces; atan2 keeps the quadrant.
-    const float t = 2.0f * kPi * u.y;
-    const float phi = std::atan2(alpha_y * std::sin(t), alpha_x * std::cos(t));
-    const float cos_phi = std::cos(phi), sin_phi = std::sin(phi);
-    // θ: tan²θ = −α(φ)² ln(1 − u1) with 1/α(φ)² = cos²φ/αx² + sin²φ/αy².
-    const float inv_alpha2 =
-        cos_phi * cos_phi / (alpha_x * alpha_x) + sin_phi * sin_phi / (alpha_y * alpha_y);
-    const float tan2 = -std::log1p(-u.x) / inv_alpha2;
-    const float cos_t = 1.0f / std::sqrt(1.0f + tan2);
-    const float sin_t = safe_sqrt(1.0f - cos_t * cos_t);
-    return {sin_t * cos_phi, sin_t * sin_phi, cos_t};
+  Vec3 sample_wh(const Vec3& wo, Point2 u) const {
+    // Stretch wo to the configuration where the roughness is 1, sample the slopes visible from
+    // it there, then rotate and unstretch them (Heitz and d'Eon 2014, §4).
+    Vec3 vh(alpha_x * wo.x, alpha_y * wo.y, wo.z);
+    if (!normalize_direction(vh) || !(vh.z > 0.0f)) return {0.0f, 0.0f, 1.0f};
+    const float sin_theta = safe_sqrt(1.0f - vh.z * vh.z);
+    float cos_phi = 1.0f, sin_phi = 0.0f;
+    if (sin_theta > 0.0f) {
+      cos_phi = vh.x / sin_theta;
+      sin_phi = vh.y / sin_theta;
+    }
+    float sx, sy;
+    beckmann_visible_slopes(vh.z, sin_theta, u, &sx, &sy);
+    const float x = (cos_phi * sx - sin_phi * sy) * alpha_x;
+    const float y = (sin_phi * sx + cos_phi * sy) * alpha_y;
+    Vec3 wh(-x, -y, 1.0f);
+    normalize_direction(wh);
+    return wh;
   }
-  BXDF_KERNEL float pdf_wh(const Vec3& /*wo*/, const Vec3& wh) const { return D(wh) * std::max(0.0f, wh.z); }
+  // The density of sample_wh: D(wh) G1(wo) max(0, wo·wh) / cos θo with the exact G1.
+  float pdf_wh(const Vec3& wo, const Vec3& wh) const {
+    if (!(wo.z > 0.0f)) return 0.0f;
+    return D(wh) * exact_G1(wo) * std::max(0.0f, dot(wo, wh)) / wo.z;
+  }
+  // Smith's masking for the Beckmann distribution, exactly: Λ = (erf(a) − 1)/2 + e^{−a²}/(2a√π)
+  // with a = 1/(α tan θ).
+  float exact_G1(const Vec3& w) const {
+    const float t = projected_alpha2_tan2(w, alpha_x, alpha_y);
+    if (!(t > 0.0f)) return w.z == 0.0f ? 0.0f : 1.0f;
+    const float a = 1.0f / std::sqrt(t);
+    const float lambda = 0.5f * (std::erf(a) - 1.0f) + std::exp(-a * a) / (2.0f * a * 1.77245385f)  /* √π */;
+    return 1.0f / (1.0f + std::max(lambda, 0.0f));
+  }
 };
 
 }  // namespace microfacet
