@@ -201,22 +201,11 @@ void PathTracer::begin(const Ray& camera_ray, PathState* s) const {
   s->ray = camera_ray;
 }
 
-PathTracer::VertexFate PathTracer::fate(const PathState& s, uint32_t material) const {
-  // Past the transparent budget only this surface's emission counts (Cycles' PATH_RAY_
-  // TERMINATE_ON_NEXT_SURFACE); past max_bounces only its Transparent closures remain, which
-  // the path passes through with their summed weight (PATH_RAY_TERMINATE_AFTER_TRANSPARENT).
-  VertexFate f;
-  const bool ends_here = s.transparent_bounces > settings_.transparent_max_bounces;
-  f.scatters = !ends_here && s.bounce <= settings_.max_bounces;
-  f.may_pass = !ends_here && transparent_shadows_.transparent(material);
-  return f;
-}
-
 void PathTracer::prepare(const PathState& s, const Hit& hit, PreparedHit* prepared) const {
   SurfacePoint& sp = prepared->sp;
   sp = scene_.surface_point(hit);
   const Vec3 wo = -s.ray.dir;
-  prepared->flipped = face_viewer(sp, wo, scene_.transmissive(sp.material));
+  const bool flipped = face_viewer(sp, wo, scene_.transmissive(sp.material));
   // Reflection is judged against the shading normal, as Cycles' closures do: directions
   // between the flat triangle and the smooth surface are lit (the terminator offset then lets
   // their shadow rays out). Transmissive surfaces keep the geometric decision. The closures'
@@ -224,6 +213,9 @@ void PathTracer::prepare(const PathState& s, const Hit& hit, PreparedHit* prepar
   const float viewer_side = dot(wo, sp.ng) < 0.0f ? -1.0f : 1.0f;
   prepared->viewer_n = viewer_side_normal(sp, wo);
   prepared->frame = Frame::from_normal_tangent(prepared->viewer_n * viewer_side, sp.tangent);
+  const bool ends_here = s.transparent_bounces > settings_.transparent_max_bounces;
+  prepared->scatters = !ends_here && s.bounce <= settings_.max_bounces;
+  prepared->may_pass = !ends_here && transparent_shadows_.transparent(sp.material);
   const MaterialGraph* graph = scene_.materials()[sp.material].graph.get();
   prepared->runs_program = false;
   // A graph of constants only (no nodes; Cycles' default tangent is a node's) has nothing to
@@ -231,11 +223,11 @@ void PathTracer::prepare(const PathState& s, const Hit& hit, PreparedHit* prepar
   if (!graph || (graph->nodes.empty() && graph->default_tangent_reg < 0)) return;
   // The program runs where the closures are built, where the emission or (on camera rays) a
   // holdout reads it; not where only a constant emission counts.
-  const VertexFate f = fate(s, sp.material);
-  prepared->runs_program = f.scatters || f.may_pass || !graph->emission_is_constant() ||
+  prepared->runs_program = prepared->scatters || prepared->may_pass ||
+                           !graph->emission_is_constant() ||
                            (s.bounce == 0 && !graph->holdouts.empty());
   if (prepared->runs_program)
-    prepared->ctx = ShadingContext{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, prepared->flipped, &sp};
+    prepared->ctx = ShadingContext{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped, &sp};
 }
 
 void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
@@ -307,8 +299,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   const Vec3& viewer_n = prepared->viewer_n;
   BSDF bsdf(prepared->frame, transmissive ? sp.ng : prepared->frame.n);
   RGB emitted = mat.emission;
-  const VertexFate f = fate(s, sp.material);
-  const bool scatters = f.scatters, may_pass = f.may_pass;
+  const bool scatters = prepared->scatters, may_pass = prepared->may_pass;
   if (mat.graph) {
     // A node material: its program has run at this point (prepared->runs_program wherever
     // what follows reads it); build its closures in place (not where only emission counts).

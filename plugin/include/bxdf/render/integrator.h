@@ -71,11 +71,15 @@ struct PathState {
 // their programs hit-batch-wise (MaterialGraph::evaluate_batch).
 struct PreparedHit {
   SurfacePoint sp;
-  bool flipped = false;       // sp's normals were turned towards the viewer
   // Cycles' valid-reflection normal on the viewer's side (viewer_side_normal), and the
   // closures' frame about it in sp.ns's orientation.
   Vec3 viewer_n;
   Frame frame;
+  // Past the transparent budget only this surface's emission counts (Cycles' PATH_RAY_
+  // TERMINATE_ON_NEXT_SURFACE); past max_bounces only its Transparent closures remain, which
+  // the path passes through with their summed weight (PATH_RAY_TERMINATE_AFTER_TRANSPARENT).
+  bool scatters = false;      // the vertex scatters
+  bool may_pass = false;      // it may pass the surface's Transparent closures
   bool runs_program = false;  // a node material whose program this hit needs
   ShadingContext ctx;         // the program's inputs (when runs_program); points at sp
 };
@@ -106,11 +110,6 @@ class PathTracer {
   PathResult finish(PathState& s, PathStats& stats) const;
 
  private:
-  // Whether a vertex on `material` scatters, or may only pass its Transparent closures.
-  struct VertexFate {
-    bool scatters = false, may_pass = false;
-  };
-  VertexFate fate(const PathState& s, uint32_t material) const;
   // One vertex: `prepared` and `registers` (its program's, where it ran) for a found hit.
   void step(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit* hit,
             const PreparedHit* prepared, const Vec3* registers) const;
