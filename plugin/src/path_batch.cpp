@@ -33,23 +33,21 @@ void PathBatch::prefetch_shading(int live) const {
 
 int PathBatch::advance_live(int live, PathStats& stats) {
   for (int a = 0; a < live; ++a) {
-    pending_[size_t(a)] = 0;
+    programs_[size_t(a)] = nullptr;
     registers_[size_t(a)] = nullptr;
     if (!found_[size_t(a)]) continue;
     PreparedHit& p = prepared_[size_t(a)];
     tracer_.prepare(paths_[size_t(live_[size_t(a)])], hits_[size_t(a)], &p);
-    pending_[size_t(a)] = p.runs_program;
+    if (p.runs_program) programs_[size_t(a)] = scene_.materials()[p.sp.material].graph.get();
   }
   // Each program over its hits (few materials per batch: one scan per program).
   for (int a = 0; a < live; ++a) {
-    if (!pending_[size_t(a)]) continue;
-    const MaterialGraph* graph = scene_.materials()[prepared_[size_t(a)].sp.material].graph.get();
+    const MaterialGraph* graph = programs_[size_t(a)];
+    if (!graph) continue;
     int n = 0;
     for (int b = a; b < live; ++b) {
-      if (!pending_[size_t(b)] ||
-          scene_.materials()[prepared_[size_t(b)].sp.material].graph.get() != graph)
-        continue;
-      pending_[size_t(b)] = 0;
+      if (programs_[size_t(b)] != graph) continue;
+      programs_[size_t(b)] = nullptr;
       Vec3* r = register_block_.data() + size_t(b) * registers_per_path_;
       registers_[size_t(b)] = r;
       program_ctxs_[size_t(n)] = prepared_[size_t(b)].ctx;

@@ -70,10 +70,11 @@ class PathBatch {
   std::array<const Vec3*, kSize> registers_;
   std::vector<Vec3> register_block_;
   size_t registers_per_path_ = 0;
-  // One program's hits at a time, gathered for evaluate_batch.
+  // Per live path, the program still to run at its hit (null: none, or already run); one
+  // program's hits at a time are gathered for evaluate_batch.
+  std::array<const MaterialGraph*, kSize> programs_;
   std::array<ShadingContext, kSize> program_ctxs_;
   std::array<Vec3*, kSize> program_registers_;
-  std::array<uint8_t, kSize> pending_;
 };
 
 }  // namespace bxdf::render
