@@ -21,6 +21,8 @@ constexpr float kInv2Pi = 0.15915494309189533577f;
 constexpr float kInv4Pi = 0.07957747154594766788f;
 constexpr float kPiOver2 = 1.57079632679489661923f;
 constexpr float kPiOver4 = 0.78539816339744830961f;
+constexpr float kSqrtPi = 1.77245385090551602730f;
+constexpr float kInvSqrtPi = 0.56418958354775628695f;
 
 inline float radians(float deg) { return deg * (kPi / 180.0f); }
 inline float degrees(float rad) { return rad * (180.0f / kPi); }

@@ -14,8 +14,6 @@ namespace microfacet {
 
 namespace {
 
-constexpr float kInvSqrtPi = 0.56418958354775628f;
-
 // The inverse error function in single precision (Giles 2010, "Approximating the erfinv
 // function"): relative error below 4e-7 on (−1, 1).
 float erfinv(float x) {
@@ -54,7 +52,6 @@ void beckmann_visible_slopes(float cos_theta, float sin_theta, Point2 u, float* 
   // Away from 0 and 1, where erfinv is infinite.
   const float u1 = std::clamp(u.x, 1e-6f, 1.0f - 1e-6f);
   const float u2 = std::clamp(u.y, 1e-6f, 1.0f - 1e-6f);
-  *slope_y = erfinv(2.0f * u2 - 1.0f);
   const float theta = std::acos(std::clamp(cos_theta, -1.0f, 1.0f));
   if (theta < 1e-4f) {
     // Seen from the normal, every normal is visible: the slope's radius² is exponential.
@@ -84,6 +81,7 @@ void beckmann_visible_slopes(float cos_theta, float sin_theta, Point2 u, float* 
     b -= cdf / density;
   }
   *slope_x = erfinv(std::clamp(b, -1.0f + 1e-7f, 1.0f - 1e-7f));
+  *slope_y = erfinv(2.0f * u2 - 1.0f);
 }
 
 }  // namespace microfacet

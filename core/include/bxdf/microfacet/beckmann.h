@@ -72,7 +72,7 @@ struct Beckmann {
     const float t = projected_alpha2_tan2(w, alpha_x, alpha_y);
     if (!(t > 0.0f)) return w.z == 0.0f ? 0.0f : 1.0f;
     const float a = 1.0f / std::sqrt(t);
-    const float lambda = 0.5f * (std::erf(a) - 1.0f) + std::exp(-a * a) / (2.0f * a * 1.77245385f)  /* √π */;
+    const float lambda = 0.5f * (std::erf(a) - 1.0f) + std::exp(-a * a) / (2.0f * a * kSqrtPi);
     return 1.0f / (1.0f + std::max(lambda, 0.0f));
   }
 };
