@@ -113,7 +113,7 @@ class PathTracer {
   // One vertex: `prepared` and `registers` (its program's, where it ran) for a found hit.
   void step(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit* hit,
             const PreparedHit* prepared, const Vec3* registers) const;
-  // `viewer_n`: viewer_side_normal of the hit (computed once per hit by trace).
+  // `viewer_n`: viewer_side_normal of the hit (PreparedHit::viewer_n, computed once by prepare).
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
                        const Vec3& viewer_n, const std::array<float, 3>& u,
                        int transparent_bounces, PathStats& stats) const;
