@@ -7,6 +7,20 @@
 
 namespace bxdf {
 
+const std::string& BxDF::model_name() const {
+  static const std::string none;
+  return identity_ ? identity_->name : none;
+}
+
+const ParamSet& BxDF::params() const {
+  static const ParamSet none;
+  return identity_ ? identity_->params : none;
+}
+
+void BxDF::set_identity(std::string name, ParamSet params) {
+  identity_ = std::make_unique<const Identity>(Identity{std::move(name), std::move(params)});
+}
+
 namespace {
 
 // Stratified point i of an n = side × side grid, jittered by rng.

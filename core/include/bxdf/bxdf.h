@@ -90,18 +90,21 @@ class BxDF {
                               DirectionsOut wi, RGBOut f, float* pdf) const = 0;
   virtual void pdf_batch(size_t n, DirectionsIn wo, DirectionsIn wi, float* out) const = 0;
 
-  // The registry name and validated parameters that rebuild this model (set by make()).
-  const std::string& model_name() const { return model_name_; }
-  const ParamSet& params() const { return params_; }
-  void set_identity(std::string name, ParamSet params) {
-    model_name_ = std::move(name);
-    params_ = std::move(params);
-  }
+  // The registry name and validated parameters that rebuild this model (set by make(); empty
+  // for a model built without them, as a material graph's closures are at every hit).
+  const std::string& model_name() const;
+  const ParamSet& params() const;
+  void set_identity(std::string name, ParamSet params);
 
  private:
+  struct Identity {
+    std::string name;
+    ParamSet params;
+  };
   uint32_t flags_;
-  std::string model_name_;
-  ParamSet params_;
+  // Held apart, so that a model built per hit (ClosureArena) makes and destroys one null
+  // pointer instead of a string and two vectors.
+  std::unique_ptr<const Identity> identity_;
 };
 
 std::string flags_to_string(uint32_t flags);  // "reflection|glossy"

@@ -96,7 +96,7 @@ inline Vec3 face_forward(const Vec3& v, const Vec3& ref) { return dot(v, ref) < 
 
 // Normalises a direction a caller handed us. Returns false for zero, tiny or non-finite
 // vectors, which every model treats as "no direction" and answers with 0.
-inline bool normalize_direction(Vec3& v) {
+BXDF_KERNEL bool normalize_direction(Vec3& v) {
   const float l2 = length_squared(v);
   if (!(l2 > 1e-30f) || !(l2 <= std::numeric_limits<float>::max())) return false;
   v = v * (1.0f / std::sqrt(l2));
