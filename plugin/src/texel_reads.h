@@ -6,6 +6,10 @@
 #include <cstdint>
 #include <cstring>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 #include "bxdf/render/texture.h"
 
 namespace bxdf::render {
@@ -28,9 +32,19 @@ inline Float4 decode_floats(const unsigned char* p) {
   return v;
 }
 inline Float4 decode_bytes(const unsigned char* p) {
+#ifdef __SSE2__
+  // Widened by unpacking with zeros and converted in one instruction: baseline x86-64 has no
+  // byte-to-int conversion, and the generic form below converts channel by channel.
+  int32_t word;
+  std::memcpy(&word, p, sizeof word);
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i ints = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(word), zero), zero);
+  return Float4(_mm_cvtepi32_ps(ints)) * splat4(1.0f / 255.0f);
+#else
   Byte4 b;
   std::memcpy(&b, p, sizeof b);
   return __builtin_convertvector(b, Float4) * splat4(1.0f / 255.0f);
+#endif
 }
 inline Float4 decode_grey_byte(const unsigned char* p) {
   const float v = float(*p) * (1.0f / 255.0f);
@@ -120,6 +134,9 @@ inline Float4 gather_stored(int width, int height, TexelStorage storage, const u
 // linear for sRGB images (Cycles' order).
 Float4 image_node_convert(const TextureSettings& settings, Float4 texels, bool unassociate);
 // The node's outputs as a graph's registers hold them: colour in out[0], alpha in out[1].
-void store_node_outputs(Float4 c, Vec3* out);
+inline void store_node_outputs(Float4 c, Vec3* out) {
+  out[0] = Vec3(c[0], c[1], c[2]);
+  out[1] = Vec3(c[3], c[3], c[3]);
+}
 
 }  // namespace bxdf::render

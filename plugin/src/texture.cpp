@@ -109,14 +109,17 @@ class SrgbTable {
       value_[size_t(i)] = srgb_to_linear(splat4(float(i) / float(kIntervals)))[0];
   }
   Float4 convert(Float4 c) const {
-    if (!(c[0] >= 0.0f && c[0] <= 1.0f && c[1] >= 0.0f && c[1] <= 1.0f && c[2] >= 0.0f &&
-          c[2] <= 1.0f))
-      return srgb_to_linear(c);
+    // The range test and the table positions for the three channels at once (the same
+    // truncations and floats as channel by channel); only the table reads are per channel.
+    const Int4 in_range = (c >= splat4(0.0f)) & (c <= splat4(1.0f));
+    if (!(in_range[0] & in_range[1] & in_range[2])) return srgb_to_linear(c);
+    const Float4 x = c * splat4(float(kIntervals));
+    Int4 i = __builtin_convertvector(x, Int4);
+    i = i < kIntervals - 1 ? i : Int4{} + (kIntervals - 1);
+    const Float4 t = x - __builtin_convertvector(i, Float4);
     for (int k = 0; k < 3; ++k) {
-      const float x = c[k] * float(kIntervals);
-      const int i = std::min(static_cast<int>(x), kIntervals - 1);
-      const float t = x - float(i);
-      c[k] = value_[size_t(i)] + t * (value_[size_t(i) + 1] - value_[size_t(i)]);
+      const float* v = &value_[size_t(i[k])];
+      c[k] = v[0] + t[k] * (v[1] - v[0]);
     }
     return c;
   }
@@ -125,10 +128,9 @@ class SrgbTable {
   std::array<float, kIntervals + 1> value_;
 };
 
-const SrgbTable& srgb_table() {
-  static const SrgbTable table;
-  return table;
-}
+// Built at start-up rather than on first use, so that no lookup pays for a guard.
+const SrgbTable srgb_table_instance;
+const SrgbTable& srgb_table() { return srgb_table_instance; }
 
 
 Float4 gather_grid(const TexelGrid& g, const TexelFootprint& f) {
@@ -166,6 +168,24 @@ TexelFootprint texel_footprint(int width, int height, TextureInterpolation inter
   const float tx = frac(x * static_cast<float>(width) - 0.5f, &ix);
   const float ty = frac(y * static_cast<float>(height) - 0.5f, &iy);
   const int n = interpolation == TextureInterpolation::Linear ? 2 : 4;
+  if (n == 2 && extension == TextureExtension::Repeat) {
+    // The common case in one pass: both columns and rows wrapped, always inside the grid.
+    const int x0 = wrap_repeat(ix, width), y0 = wrap_repeat(iy, height);
+    const int x1 = x0 + 1 == width ? 0 : x0 + 1, y1 = y0 + 1 == height ? 0 : y0 + 1;
+    f.n = 2;
+    f.inside = true;
+    f.xs[0] = x0;
+    f.xs[1] = x1;
+    f.ys[0] = y0;
+    f.ys[1] = y1;
+    f.rows[0] = size_t(y0) * size_t(width);
+    f.rows[1] = size_t(y1) * size_t(width);
+    f.wx[0] = 1.0f - tx;
+    f.wx[1] = tx;
+    f.wy[0] = 1.0f - ty;
+    f.wy[1] = ty;
+    return f;
+  }
   if (!axis_footprint(ix, width, extension, n, f.xs) ||
       !axis_footprint(iy, height, extension, n, f.ys))
     return f;
@@ -214,11 +234,6 @@ Float4 image_node_convert(const TextureSettings& s, Float4 c, bool unassociate) 
   }
   if (s.colorspace == TextureColorspace::SRGB) c = srgb_table().convert(c);
   return c;
-}
-
-void store_node_outputs(Float4 c, Vec3* out) {
-  out[0] = Vec3(c[0], c[1], c[2]);
-  out[1] = Vec3(c[3], c[3], c[3]);
 }
 
 void Texture::prefetch(const TexelFootprint& f) const {

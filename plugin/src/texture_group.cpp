@@ -22,7 +22,9 @@ std::shared_ptr<const TextureGroup> TextureGroup::make(const std::vector<const T
       if (g.width != first.width || g.height != first.height) return nullptr;
       const TexelArray a = texel_array(g);
       if (a.storage != storage) continue;
-      group->members_[k] = {storage, group->stride_, images[k]->settings()};
+      const TextureSettings& settings = images[k]->settings();
+      group->members_[k] = {storage, group->stride_, settings,
+                            settings.colorspace == TextureColorspace::SRGB};
       group->stride_ += a.size;
     }
   }
@@ -41,6 +43,10 @@ std::shared_ptr<const TextureGroup> TextureGroup::make(const std::vector<const T
 
 void TextureGroup::lookup(const TexelFootprint& f, const uint8_t* unassociate,
                           const int* outputs, Vec3* registers) const {
+  if (f.inside && f.n == 2) {
+    lookup_bilinear_inside(f, unassociate, outputs, registers);
+    return;
+  }
   for (size_t k = 0; k < members_.size(); ++k) {
     const Member& m = members_[k];
     const unsigned char* base = data_.data() + m.offset;
@@ -48,6 +54,35 @@ void TextureGroup::lookup(const TexelFootprint& f, const uint8_t* unassociate,
     const Float4 c = gather_stored(width_, height_, m.storage, base, stride_, f);
     store_node_outputs(image_node_convert(m.settings, c, unassociate[k] != 0),
                        registers + outputs[k]);
+  }
+}
+
+// Linear inside the grid, the common case: the four records' addresses and the weights are
+// worked out once for all members; each member's sum is gather()'s expression, the same floats.
+void TextureGroup::lookup_bilinear_inside(const TexelFootprint& f, const uint8_t* unassociate,
+                                          const int* outputs, Vec3* registers) const {
+  const unsigned char* const data = data_.data();
+  const unsigned char* const r00 = data + (f.rows[0] + size_t(f.xs[0])) * stride_;
+  const unsigned char* const r10 = data + (f.rows[0] + size_t(f.xs[1])) * stride_;
+  const unsigned char* const r01 = data + (f.rows[1] + size_t(f.xs[0])) * stride_;
+  const unsigned char* const r11 = data + (f.rows[1] + size_t(f.xs[1])) * stride_;
+  const Float4 w00 = splat4(f.wy[0] * f.wx[0]), w10 = splat4(f.wy[0] * f.wx[1]);
+  const Float4 w01 = splat4(f.wy[1] * f.wx[0]), w11 = splat4(f.wy[1] * f.wx[1]);
+  for (size_t k = 0; k < members_.size(); ++k) {
+    const Member& m = members_[k];
+    const size_t o = m.offset;
+    auto sum = [&](Float4 (*decode)(const unsigned char*)) {
+      return (decode(r00 + o) * w00 + decode(r10 + o) * w10) +
+             (decode(r01 + o) * w01 + decode(r11 + o) * w11);
+    };
+    Float4 c;
+    switch (m.storage) {
+      case TexelStorage::GreyBytes: c = sum(decode_grey_byte); break;
+      case TexelStorage::Bytes: c = sum(decode_bytes); break;
+      default: c = sum(decode_floats); break;
+    }
+    if (m.converts || unassociate[k]) c = image_node_convert(m.settings, c, unassociate[k] != 0);
+    store_node_outputs(c, registers + outputs[k]);
   }
 }
 
