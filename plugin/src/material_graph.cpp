@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "bxdf/render/environment.h"
 #include "bxdf/render/graph_ops.h"
@@ -71,9 +72,11 @@ void MaterialGraph::evaluate_batch(const ShadingContext* ctxs, Vec3* const* regi
     // Node by node, each over the chunk's hits: the hits' work is independent, so one hit's
     // latency chains (texel loads, the normal map's square roots and divisions) overlap the
     // next hit's instead of following one another.
-    for (const GraphNode& node : nodes)
+    for (const GraphNode& node : nodes) {
+      if (node.grouped) continue;  // looked up with its group's first node
       for (int k = 0; k < m; ++k)
         run_node(node, chunk_ctxs[k], chunk_registers[k], surfaces[k]);
+    }
   }
 }
 
@@ -320,17 +323,13 @@ void MaterialGraph::add_closures(const Vec3* registers, const Vec3& tangent,
     if (!(weight.r + weight.g + weight.b > 3e-5f) || !finite_nonnegative(weight)) continue;
     const BxDF* model = c.prebuilt.get();
     if (!model) {
-      for (size_t i = 0; i < c.params.size(); ++i) {
-        const GraphInput& in = c.params[i];
-        if (in.reg < 0) {
-          values[i] = c.constants[i];
-        } else {
-          // Into the registry's range, as Cycles clamps closure inputs (NaN to the lower end).
-          const Vec3 v = read_input(in, registers);
-          const float lo = c.ranges[i][0], hi = c.ranges[i][1];
-          auto clamp_one = [lo, hi](float x) { return !(x >= lo) ? lo : (x > hi ? hi : x); };
-          values[i] = {clamp_one(v.x), clamp_one(v.y), clamp_one(v.z)};
-        }
+      std::memcpy(values, c.constants.data(), c.constants.size() * sizeof(PlainValue));
+      for (const GraphClosure::BoundParam& b : c.bound) {
+        // Into the registry's range, as Cycles clamps closure inputs (NaN to the lower end).
+        const Vec3 v = read_input(b.input, registers);
+        const float lo = b.lo, hi = b.hi;
+        auto clamp_one = [lo, hi](float x) { return !(x >= lo) ? lo : (x > hi ? hi : x); };
+        values[b.index] = {clamp_one(v.x), clamp_one(v.y), clamp_one(v.z)};
       }
       model = c.model->place(values, arena);
       if (!model) continue;  // cannot happen: the reader checked the arena's capacity

@@ -577,14 +577,17 @@ class GraphReader {
       c.prebuilt = make(name, validated);
     } else {
       c.constants = plain_values(*c.model, validated);
-      for (const ParamSpec& spec : c.model->params) {
+      for (size_t i = 0; i < c.params.size(); ++i) {
+        if (c.params[i].reg < 0) {
+          c.params[i].constant = Vec3(c.constants[i].x, c.constants[i].y, c.constants[i].z);
+          continue;
+        }
         // clamp_plain's bounds, once: the per-hit clamp is then two compares.
+        const ParamSpec& spec = c.model->params[i];
         const PlainValue lo = clamp_plain(spec, {-INFINITY, -INFINITY, -INFINITY});
         const PlainValue hi = clamp_plain(spec, {INFINITY, INFINITY, INFINITY});
-        c.ranges.push_back({lo.x, hi.x});
+        c.bound.push_back({uint32_t(i), c.params[i], lo.x, hi.x});
       }
-      for (size_t i = 0; i < c.params.size(); ++i)
-        if (c.params[i].reg < 0) c.params[i].constant = Vec3(c.constants[i].x, c.constants[i].y, c.constants[i].z);
     }
     // Cycles' CLOSURE_IS_BSDF_DIFFUSE closures among the registry's models (Diffuse, Oren–Nayar,
     // Translucent); Principled's diffuse and sheen lobes are inside one model and are not.

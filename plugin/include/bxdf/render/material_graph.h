@@ -66,7 +66,14 @@ struct GraphClosure {
   GraphInput weight;                 // colour (a float weight is stored grey)
   std::vector<GraphInput> params;    // one per declared parameter, in declaration order
   std::vector<PlainValue> constants; // the validated constant of each parameter
-  std::vector<std::array<float, 2>> ranges;  // per parameter: the registry's range, as floats
+  // The parameters read from registers: each one's index, input and registry range (as
+  // floats); the others keep their constant.
+  struct BoundParam {
+    uint32_t index;
+    GraphInput input;
+    float lo, hi;
+  };
+  std::vector<BoundParam> bound;
   bool all_constant = true;
   BxDFPtr prebuilt;                  // when every parameter is constant: built once
   int normal_reg = -1;               // register of a perturbed normal, or -1
