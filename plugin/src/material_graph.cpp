@@ -80,7 +80,7 @@ void MaterialGraph::evaluate_batch(const ShadingContext* ctxs, Vec3* const* regi
   }
 }
 
-void MaterialGraph::run_node(const GraphNode& node, const ShadingContext& ctx, Vec3* r,
+[[gnu::always_inline]] inline void MaterialGraph::run_node(const GraphNode& node, const ShadingContext& ctx, Vec3* r,
                              const HitSurfaces& surfaces) const {
   const Scene& scene = *ctx.scene;
   auto in = [&](int i) { return read_input(node.in[size_t(i)], r); };
