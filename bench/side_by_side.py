@@ -51,15 +51,23 @@ def parse_args():
 
 def set_up_scene(scene_name, resolution):
     """Builds the harness scene once, with every material set up for both engines."""
-    import bpy
     from dataclasses import replace
 
-    from compare import bpy_build, driver, engine_setup, material_setup, scenes
+    from compare import scenes
 
-    driver.enable_addons({"engine": "BXDF_LAB", "repo_root": ROOT})
     spec = scenes.get(scene_name)
     if resolution:
         spec = replace(spec, resolution=tuple(resolution))
+    return set_up_spec(spec)
+
+
+def set_up_spec(spec):
+    """Builds a scene spec (compare/scenes.py) in Blender, every material set up for both engines."""
+    import bpy
+
+    from compare import bpy_build, driver, engine_setup, material_setup
+
+    driver.enable_addons({"engine": "BXDF_LAB", "repo_root": ROOT})
     bpy_build.clear_scene()
     materials = {m.name: bpy.data.materials.new(m.name) for m in spec.materials()}
     objects = bpy_build.build(spec, materials)
@@ -73,14 +81,17 @@ def set_up_scene(scene_name, resolution):
     return spec, labels
 
 
-def render(engine, spec, spp, seed, threads, path):
-    """Renders once; returns (seconds, CPU seconds of the whole process, HxWx3 linear image)."""
+def render(engine, spec, spp, seed, threads, path, cycles_pattern=None):
+    """Renders once; returns (seconds, CPU seconds of the whole process, HxWx3 linear image).
+    `cycles_pattern`: Cycles' sampling_pattern instead of the harness's (its default, PMJ)."""
     import bpy
 
     from compare import driver, engine_setup, imageio
 
     configure = engine_setup.configure_cycles if engine == "CYCLES" else engine_setup.configure_bxdf_lab
     configure(spec, spp, seed, threads)
+    if engine == "CYCLES" and cycles_pattern:
+        bpy.context.scene.cycles.sampling_pattern = cycles_pattern
     bpy.context.scene.render.filepath = path
     start, cpu_start = time.perf_counter(), time.process_time()
     bpy.ops.render.render(write_still=True)
