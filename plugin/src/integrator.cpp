@@ -69,7 +69,7 @@ PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
 RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf,
                                  const Vec3& wo, const Vec3& viewer_n,
                                  const std::array<float, 3>& u, int transparent_bounces,
-                                 PathStats& stats) const {
+                                 PathStats& stats, PendingShadow* deferred) const {
   const LightSampler& sampler = scene_.light_sampler();
   if (sampler.empty()) return RGB(0.0f);
   const auto& lights = scene_.lights();
@@ -127,9 +127,17 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
       tmax = std::max(0.0f, dist * (1.0f - 1e-4f) - 2.0f * offset_scale(sp.p));
     }
     ++stats.shadow_rays;
-    const RGB visible = transparent_shadows_.throughput(origin, dir, tmax, transparent_bounces);
-    if (visible.is_black()) return RGB(0.0f);
-    f *= visible;
+    if (deferred && !transparent_shadows_.any()) {
+      // Plain occlusion, tested by the caller (an unblocked ray's f *= 1 changes no bit).
+      deferred->origin = origin;
+      deferred->dir = dir;
+      deferred->tmax = tmax;
+      deferred->active = true;
+    } else {
+      const RGB visible = transparent_shadows_.throughput(origin, dir, tmax, transparent_bounces);
+      if (visible.is_black()) return RGB(0.0f);
+      f *= visible;
+    }
   }
 
   const float light_pdf = ls.pdf * select;
@@ -242,12 +250,30 @@ void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& st
     registers = r;
   }
   step(s, sampler, stats, found_hit, &prepared, registers);
+  test_shadow(s);
 }
 
 void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
                          const Hit& hit, const PreparedHit& prepared,
                          const Vec3* registers) const {
   step(s, sampler, stats, &hit, &prepared, registers);
+  test_shadow(s);
+}
+
+void PathTracer::advance_deferring_shadow(PathState& s, const PathSampler& sampler,
+                                          PathStats& stats, const Hit* hit,
+                                          const PreparedHit* prepared,
+                                          const Vec3* registers) const {
+  if (!hit) {
+    advance(s, sampler, stats, nullptr);  // escaped: no light sample, nothing to defer
+    return;
+  }
+  step(s, sampler, stats, hit, prepared, registers);
+}
+
+void PathTracer::test_shadow(PathState& s) const {
+  if (s.shadow.active)
+    resolve_shadow(s, scene_.occluded(s.shadow.origin, s.shadow.dir, s.shadow.tmax));
 }
 
 void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats,
@@ -266,6 +292,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   int& transparent_bounces = s.transparent_bounces;
   int& vertex = s.vertex;
   PathResult& result = s.result;
+  if (s.shadow.active) test_shadow(s);  // the previous vertex's, if the caller left it
   const auto& lights = scene_.lights();
   ShadingScratch& scratch = shading_scratch();
   // Multiscatter GGX evaluates a 16-walk estimate seeded by the directions; salted per sample,
@@ -342,9 +369,12 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   }
   if (bsdf.num_components() == 0) return end_path();
 
-  if (bsdf.has_non_delta())
-    L += beta * sample_one_light(hit, sp, bsdf, wo, viewer_n, sampler.light(vertex),
-                                 transparent_bounces, stats);
+  if (bsdf.has_non_delta()) {
+    const RGB nee = sample_one_light(hit, sp, bsdf, wo, viewer_n, sampler.light(vertex),
+                                     transparent_bounces, stats, &s.shadow);
+    if (s.shadow.active) s.shadow.contribution = beta * nee;  // added once the ray is tested
+    else L += beta * nee;
+  }
 
   const BSDFSample bs = bsdf.sample_f(wo, sampler.bsdf(vertex));
   if (!bs.valid() || bs.f.is_black()) return end_path();
@@ -394,6 +424,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
 }
 
 PathResult PathTracer::finish(PathState& s, PathStats& stats) const {
+  test_shadow(s);  // the last vertex's, if the caller left it
   RGB L = s.L;
   PathResult result = s.result;
   const bool finite = std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b);

@@ -56,17 +56,26 @@ int PathBatch::advance_live(int live, PathStats& stats) {
     }
     graph->evaluate_batch(program_ctxs_.data(), program_registers_.data(), n);
   }
-  int still = 0;
+  int still = 0, shadowed = 0;
   for (int a = 0; a < live; ++a) {
     const int k = live_[size_t(a)];
     PathState& path = paths_[size_t(k)];
-    if (found_[size_t(a)])
-      tracer_.advance(path, sampler(k), stats, hits_[size_t(a)], prepared_[size_t(a)],
-                      registers_[size_t(a)]);
-    else
-      tracer_.advance(path, sampler(k), stats, nullptr);
+    const bool found = found_[size_t(a)] != 0;
+    tracer_.advance_deferring_shadow(path, sampler(k), stats, found ? &hits_[size_t(a)] : nullptr,
+                                     found ? &prepared_[size_t(a)] : nullptr, registers_[size_t(a)]);
+    if (path.shadow.active) {
+      shadow_origins_[size_t(shadowed)] = path.shadow.origin;
+      shadow_dirs_[size_t(shadowed)] = path.shadow.dir;
+      shadow_tmax_[size_t(shadowed)] = path.shadow.tmax;
+      shadowed_[size_t(shadowed++)] = k;
+    }
     if (!path.done) live_[size_t(still++)] = k;
   }
+  // The vertex's shadow rays together, before any path's next vertex adds to its L.
+  scene_.occluded_stream(shadow_origins_.data(), shadow_dirs_.data(), shadow_tmax_.data(),
+                         shadowed, shadow_occluded_.data());
+  for (int j = 0; j < shadowed; ++j)
+    PathTracer::resolve_shadow(paths_[size_t(shadowed_[size_t(j)])], shadow_occluded_[size_t(j)] != 0);
   return still;
 }
 

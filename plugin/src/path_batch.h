@@ -75,6 +75,11 @@ class PathBatch {
   std::array<const MaterialGraph*, kSize> programs_;
   std::array<ShadingContext, kSize> program_ctxs_;
   std::array<Vec3*, kSize> program_registers_;
+  // The vertex's pending shadow rays (paths by index into the batch), tested in one stream.
+  std::array<int, kSize> shadowed_;
+  std::array<Vec3, kSize> shadow_origins_, shadow_dirs_;
+  std::array<float, kSize> shadow_tmax_;
+  std::array<uint8_t, kSize> shadow_occluded_;
 };
 
 }  // namespace bxdf::render

@@ -597,6 +597,37 @@ bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+void Scene::occluded_stream(const Vec3* origins, const Vec3* dirs, const float* tmax, int count,
+                            uint8_t* occluded) const {
+  constexpr int kMax = 256;
+  RTCRay rays[kMax];
+  for (int first = 0; first < count; first += kMax) {
+    const int n = std::min(kMax, count - first);
+    for (int k = 0; k < n; ++k) {
+      RTCRay& r = rays[k];
+      const Vec3& o = origins[first + k];
+      const Vec3& d = dirs[first + k];
+      r.org_x = o.x;
+      r.org_y = o.y;
+      r.org_z = o.z;
+      r.dir_x = d.x;
+      r.dir_y = d.y;
+      r.dir_z = d.z;
+      r.tnear = 0.0f;
+      r.tfar = tmax[first + k];
+      r.time = 0.0f;
+      r.mask = kMaskShadow;
+      r.id = 0;
+      r.flags = 0;
+    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    rtcOccluded1M(embree_->scene, &ctx, rays, unsigned(n), sizeof(RTCRay));
+    for (int k = 0; k < n; ++k) occluded[first + k] = rays[k].tfar < 0.0f;
+  }
+}
+
 void Scene::intersect_stream(const Ray* const* rays, const uint8_t* camera, int count, Hit* hits,
                              uint8_t* found) const {
   constexpr int kMax = 256;

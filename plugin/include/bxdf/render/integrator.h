@@ -47,6 +47,16 @@ struct PathResult {
 
 // One camera sample's path between two intersections: what the path tracer carries from one
 // vertex to the next, so that a batch of paths can be advanced vertex by vertex.
+// A vertex's light sample whose shadow ray is still to be tested (scenes without Transparent
+// BSDFs, where the test is plain occlusion): `contribution` joins L if nothing blocks the ray.
+// Tested before the path's next vertex adds to L, so L sums in the same order either way.
+struct PendingShadow {
+  Vec3 origin, dir;
+  float tmax = 0.0f;
+  RGB contribution{0.0f};
+  bool active = false;
+};
+
 struct PathState {
   Ray ray;                 // the ray to trace next
   RGB L{0.0f}, beta{1.0f};
@@ -63,6 +73,7 @@ struct PathState {
   int vertex = 0;               // surface hits so far; the sampler's dimensions follow it
   PathResult result;
   bool done = false;
+  PendingShadow shadow;  // the last vertex's, until resolve_shadow()
 };
 
 // What advance() works out at a hit before the material's program runs: the surface point,
@@ -107,16 +118,32 @@ class PathTracer {
   void prepare(const PathState& s, const Hit& hit, PreparedHit* prepared) const;
   void advance(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit& hit,
                const PreparedHit& prepared, const Vec3* registers) const;
+  // The same as that advance(), but the vertex's shadow ray may stay pending (s.shadow): the
+  // caller tests it, for many paths at once (Scene::occluded_stream), and calls
+  // resolve_shadow(s, occluded) before the path's next vertex and before finish().
+  void advance_deferring_shadow(PathState& s, const PathSampler& sampler, PathStats& stats,
+                                const Hit* hit, const PreparedHit* prepared,
+                                const Vec3* registers) const;
+  static void resolve_shadow(PathState& s, bool occluded) {
+    if (!s.shadow.active) return;
+    s.shadow.active = false;
+    if (!occluded) s.L += s.shadow.contribution;
+  }
   PathResult finish(PathState& s, PathStats& stats) const;
 
  private:
   // One vertex: `prepared` and `registers` (its program's, where it ran) for a found hit.
   void step(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit* hit,
             const PreparedHit* prepared, const Vec3* registers) const;
+  // Tests s's pending shadow ray alone and resolves it.
+  void test_shadow(PathState& s) const;
   // `viewer_n`: viewer_side_normal of the hit (PreparedHit::viewer_n, computed once by prepare).
+  // With `deferred`, a plain-occlusion shadow ray is not tested but left in *deferred (active),
+  // and the radiance returned is what an unblocked ray gives.
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
                        const Vec3& viewer_n, const std::array<float, 3>& u,
-                       int transparent_bounces, PathStats& stats) const;
+                       int transparent_bounces, PathStats& stats,
+                       PendingShadow* deferred = nullptr) const;
   // A direction towards the world (light sampler entry lights().size()), drawn from (u1, u2).
   LightSample world_light_sample(float u1, float u2) const;
   // Radiance a ray collects from the lights it passes through before `tmax`; MIS-weighted

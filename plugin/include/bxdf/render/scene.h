@@ -134,6 +134,9 @@ class Scene {
   // True when something blocks the segment origin + t·dir, t in (0, tmax); meshes that do not
   // cast shadows are skipped.
   bool occluded(const Vec3& origin, const Vec3& dir, float tmax) const;
+  // occluded() of `count` shadow rays in one Embree stream query: occluded[k] for ray k.
+  void occluded_stream(const Vec3* origins, const Vec3* dirs, const float* tmax, int count,
+                       uint8_t* occluded) const;
   SurfacePoint surface_point(const Hit& hit) const;
 
   // Mesh attributes at a hit, for material graphs (hit barycentrics may lie outside the

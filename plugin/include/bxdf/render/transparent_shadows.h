@@ -42,6 +42,8 @@ class TransparentShadows {
 
   // Whether material `index` has a Transparent BSDF (in its components or its graph).
   bool transparent(uint32_t index) const { return transparent_[index] != 0; }
+  // True when some material has a Transparent BSDF (else a shadow ray is plain occlusion).
+  bool any() const { return any_; }
 
  private:
   // The transparent weight of the surface point sp a shadow ray (direction dir) hits.
