@@ -19,7 +19,7 @@ namespace bxdf::render {
 
 class PathBatch {
  public:
-  static constexpr int kSize = 16 * Scene::kCameraPacket;
+  static constexpr int kSize = 32 * Scene::kCameraPacket;
 
   // A camera sample: its pixel and its number in the pixel's sequence.
   struct Sample {
