@@ -51,6 +51,24 @@ constexpr size_t kCompactBvhTriangles = 2'000'000;
 // Embree geometry masks: which kinds of ray see a mesh.
 constexpr unsigned kMaskCamera = 1u, kMaskShadow = 2u, kMaskOther = 4u;
 
+// An occlusion query from `origin` along `dir` up to `tmax`, seeing the shadow-casting meshes.
+RTCRay embree_shadow_ray(const Vec3& origin, const Vec3& dir, float tmax) {
+  RTCRay r;
+  r.org_x = origin.x;
+  r.org_y = origin.y;
+  r.org_z = origin.z;
+  r.dir_x = dir.x;
+  r.dir_y = dir.y;
+  r.dir_z = dir.z;
+  r.tnear = 0.0f;
+  r.tfar = tmax;
+  r.time = 0.0f;
+  r.mask = kMaskShadow;
+  r.id = 0;
+  r.flags = 0;
+  return r;
+}
+
 // A closest-hit query for `ray` as Embree takes it: no hit yet, seeing the meshes of `mask`.
 RTCRayHit embree_ray_hit(const Ray& ray, unsigned mask) {
   RTCRayHit rh;
@@ -580,19 +598,7 @@ void Scene::intersect_camera_rays(const Ray* rays, int count, CameraHit* hits) c
 bool Scene::occluded(const Vec3& origin, const Vec3& dir, float tmax) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  RTCRay r;
-  r.org_x = origin.x;
-  r.org_y = origin.y;
-  r.org_z = origin.z;
-  r.dir_x = dir.x;
-  r.dir_y = dir.y;
-  r.dir_z = dir.z;
-  r.tnear = 0.0f;
-  r.tfar = tmax;
-  r.time = 0.0f;
-  r.mask = kMaskShadow;
-  r.id = 0;
-  r.flags = 0;
+  RTCRay r = embree_shadow_ray(origin, dir, tmax);
   rtcOccluded1(embree_->scene, &ctx, &r);
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
@@ -603,23 +609,8 @@ void Scene::occluded_stream(const Vec3* origins, const Vec3* dirs, const float* 
   RTCRay rays[kMax];
   for (int first = 0; first < count; first += kMax) {
     const int n = std::min(kMax, count - first);
-    for (int k = 0; k < n; ++k) {
-      RTCRay& r = rays[k];
-      const Vec3& o = origins[first + k];
-      const Vec3& d = dirs[first + k];
-      r.org_x = o.x;
-      r.org_y = o.y;
-      r.org_z = o.z;
-      r.dir_x = d.x;
-      r.dir_y = d.y;
-      r.dir_z = d.z;
-      r.tnear = 0.0f;
-      r.tfar = tmax[first + k];
-      r.time = 0.0f;
-      r.mask = kMaskShadow;
-      r.id = 0;
-      r.flags = 0;
-    }
+    for (int k = 0; k < n; ++k)
+      rays[k] = embree_shadow_ray(origins[first + k], dirs[first + k], tmax[first + k]);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
