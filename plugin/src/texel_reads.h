@@ -78,6 +78,20 @@ Float4 footprint_texel(int width, int height, const Texels& t, const TexelFootpr
   else return read_clip(width, height, t, f.xs[i], f.ys[j]);
 }
 
+// A bilinear footprint's four weights (w10: column 1 of row 0), as Float4s.
+struct BilinearWeights {
+  Float4 w00, w10, w01, w11;
+};
+inline BilinearWeights bilinear_weights(const TexelFootprint& f) {
+  return {splat4(f.wy[0] * f.wx[0]), splat4(f.wy[0] * f.wx[1]), splat4(f.wy[1] * f.wx[0]),
+          splat4(f.wy[1] * f.wx[1])};
+}
+// Cycles' bilinear sum: the two rows' pairs, then their sum.
+inline Float4 bilinear_sum(const BilinearWeights& w, Float4 t00, Float4 t10, Float4 t01,
+                           Float4 t11) {
+  return (t00 * w.w00 + t10 * w.w10) + (t01 * w.w01 + t11 * w.w11);
+}
+
 // The weighted sum of the footprint's texels, in Cycles' order (bilinear: the two rows'
 // pairs, then their sum; cubic: each row, then the rows).
 template <bool kInside, class Texels>
@@ -86,9 +100,7 @@ Float4 gather(int width, int height, const Texels& t, const TexelFootprint& f) {
   switch (f.n) {
     case 0: return Float4{};
     case 1: return at(0, 0);
-    case 2:
-      return (at(0, 0) * splat4(f.wy[0] * f.wx[0]) + at(1, 0) * splat4(f.wy[0] * f.wx[1])) +
-             (at(0, 1) * splat4(f.wy[1] * f.wx[0]) + at(1, 1) * splat4(f.wy[1] * f.wx[1]));
+    case 2: return bilinear_sum(bilinear_weights(f), at(0, 0), at(1, 0), at(0, 1), at(1, 1));
     default: {
       Float4 out{};
       for (int j = 0; j < 4; ++j) {

@@ -22,9 +22,7 @@ std::shared_ptr<const TextureGroup> TextureGroup::make(const std::vector<const T
       if (g.width != first.width || g.height != first.height) return nullptr;
       const TexelArray a = texel_array(g);
       if (a.storage != storage) continue;
-      const TextureSettings& settings = images[k]->settings();
-      group->members_[k] = {storage, group->stride_, settings,
-                            settings.colorspace == TextureColorspace::SRGB};
+      group->members_[k] = {storage, group->stride_, images[k]->settings()};
       group->stride_ += a.size;
     }
   }
@@ -58,7 +56,7 @@ void TextureGroup::lookup(const TexelFootprint& f, const uint8_t* unassociate,
 }
 
 // Linear inside the grid, the common case: the four records' addresses and the weights are
-// worked out once for all members; each member's sum is gather()'s expression, the same floats.
+// worked out once for all members; each member's sum is gather()'s (bilinear_sum), the same floats.
 void TextureGroup::lookup_bilinear_inside(const TexelFootprint& f, const uint8_t* unassociate,
                                           const int* outputs, Vec3* registers) const {
   const unsigned char* const data = data_.data();
@@ -66,14 +64,12 @@ void TextureGroup::lookup_bilinear_inside(const TexelFootprint& f, const uint8_t
   const unsigned char* const r10 = data + (f.rows[0] + size_t(f.xs[1])) * stride_;
   const unsigned char* const r01 = data + (f.rows[1] + size_t(f.xs[0])) * stride_;
   const unsigned char* const r11 = data + (f.rows[1] + size_t(f.xs[1])) * stride_;
-  const Float4 w00 = splat4(f.wy[0] * f.wx[0]), w10 = splat4(f.wy[0] * f.wx[1]);
-  const Float4 w01 = splat4(f.wy[1] * f.wx[0]), w11 = splat4(f.wy[1] * f.wx[1]);
+  const BilinearWeights w = bilinear_weights(f);
   for (size_t k = 0; k < members_.size(); ++k) {
     const Member& m = members_[k];
     const size_t o = m.offset;
     auto sum = [&](Float4 (*decode)(const unsigned char*)) {
-      return (decode(r00 + o) * w00 + decode(r10 + o) * w10) +
-             (decode(r01 + o) * w01 + decode(r11 + o) * w11);
+      return bilinear_sum(w, decode(r00 + o), decode(r10 + o), decode(r01 + o), decode(r11 + o));
     };
     Float4 c;
     switch (m.storage) {
@@ -81,7 +77,9 @@ void TextureGroup::lookup_bilinear_inside(const TexelFootprint& f, const uint8_t
       case TexelStorage::Bytes: c = sum(decode_bytes); break;
       default: c = sum(decode_floats); break;
     }
-    if (m.converts || unassociate[k]) c = image_node_convert(m.settings, c, unassociate[k] != 0);
+    // image_node_convert changes nothing unless it unassociates or converts from sRGB.
+    if (unassociate[k] || m.settings.colorspace == TextureColorspace::SRGB)
+      c = image_node_convert(m.settings, c, unassociate[k] != 0);
     store_node_outputs(c, registers + outputs[k]);
   }
 }

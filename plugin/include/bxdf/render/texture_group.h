@@ -38,7 +38,6 @@ class TextureGroup {
     TexelStorage storage;
     size_t offset;  // of the image's texel within a record
     TextureSettings settings;
-    bool converts;  // image_node_convert changes its texels without unassociating (sRGB)
   };
   void lookup_bilinear_inside(const TexelFootprint& footprint, const uint8_t* unassociate,
                               const int* outputs, Vec3* registers) const;
