@@ -292,7 +292,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   int& transparent_bounces = s.transparent_bounces;
   int& vertex = s.vertex;
   PathResult& result = s.result;
-  if (s.shadow.active) test_shadow(s);  // the previous vertex's, if the caller left it
+  test_shadow(s);  // the previous vertex's, if the caller left it pending
   const auto& lights = scene_.lights();
   ShadingScratch& scratch = shading_scratch();
   // Multiscatter GGX evaluates a 16-walk estimate seeded by the directions; salted per sample,

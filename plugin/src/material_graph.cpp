@@ -80,8 +80,11 @@ void MaterialGraph::evaluate_batch(const ShadingContext* ctxs, Vec3* const* regi
   }
 }
 
-[[gnu::always_inline]] inline void MaterialGraph::run_node(const GraphNode& node, const ShadingContext& ctx, Vec3* r,
-                             const HitSurfaces& surfaces) const {
+// Inlined into evaluate_batch's per-hit loop: a call's prologue per node and hit cost more than
+// most nodes' work.
+[[gnu::always_inline]] inline void MaterialGraph::run_node(const GraphNode& node,
+                                                           const ShadingContext& ctx, Vec3* r,
+                                                           const HitSurfaces& surfaces) const {
   const Scene& scene = *ctx.scene;
   auto in = [&](int i) { return read_input(node.in[size_t(i)], r); };
   auto in_float = [&](int i) { return read_float(node.in[size_t(i)], r); };

@@ -45,8 +45,6 @@ struct PathResult {
   float alpha = 0.0f;
 };
 
-// One camera sample's path between two intersections: what the path tracer carries from one
-// vertex to the next, so that a batch of paths can be advanced vertex by vertex.
 // A vertex's light sample whose shadow ray is still to be tested (scenes without Transparent
 // BSDFs, where the test is plain occlusion): `contribution` joins L if nothing blocks the ray.
 // Tested before the path's next vertex adds to L, so L sums in the same order either way.
@@ -57,6 +55,8 @@ struct PendingShadow {
   bool active = false;
 };
 
+// One camera sample's path between two intersections: what the path tracer carries from one
+// vertex to the next, so that a batch of paths can be advanced vertex by vertex.
 struct PathState {
   Ray ray;                 // the ray to trace next
   RGB L{0.0f}, beta{1.0f};
