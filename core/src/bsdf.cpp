@@ -69,7 +69,8 @@ RGB BSDF::component_f(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_worl
   return bump_shadowed(i, components_[i]->f(wo, wi), wo, wi, wi_world);
 }
 
-RGB BSDF::bump_shadowed(int i, RGB f, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const {
+RGB BSDF::apply_bump_shadowing(int i, RGB f, const Vec3& wo, const Vec3& wi,
+                                const Vec3& wi_world) const {
   if (bump_shadowing_[i] == BumpShadowing::Whole) {
     f *= bump_shadowing_term(frame_.n, frames_[i].n, wi_world);
   } else if (bump_shadowing_[i] == BumpShadowing::DiffuseLobes) {

@@ -85,8 +85,13 @@ class BSDF {
   RGB weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, Term term) const;
   // Component i's f at local wo, wi, with Cycles' bump shadowing where it applies.
   RGB component_f(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const;
-  // f of component i with the bump-shadowing term its normal calls for.
-  RGB bump_shadowed(int i, RGB f, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const;
+  // f of component i with the bump-shadowing term its normal calls for. Most components have
+  // none: that test is inline, so that the callers' loops do not spill around a call.
+  RGB bump_shadowed(int i, RGB f, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const {
+    if (bump_shadowing_[i] == BumpShadowing::None) return f;
+    return apply_bump_shadowing(i, f, wo, wi, wi_world);
+  }
+  RGB apply_bump_shadowing(int i, RGB f, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const;
   // f(), f_cos() and pdf() of one direction pair in one pass (what sample_f needs).
   // `sampled`: a component whose f and pdf at this pair are already known (its own sample's),
   // so it is not evaluated again; nullptr when none.
