@@ -294,7 +294,6 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   PathResult& result = s.result;
   test_shadow(s);  // the previous vertex's, if the caller left it pending
   const auto& lights = scene_.lights();
-  ShadingScratch& scratch = shading_scratch();
   // Multiscatter GGX evaluates a 16-walk estimate seeded by the directions; salted per sample,
   // its error averages away over a pixel's samples instead of staying fixed where they share
   // the directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does.
@@ -339,8 +338,11 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
     }
     if (!mat.graph->emission_is_constant()) emitted = mat.graph->emitted(registers);
     if (scatters || may_pass) {
-      scratch.arena.reset();
-      mat.graph->add_closures(registers, sp.tangent, scratch.arena, bsdf);
+      // The thread's arena is looked up only here: a thread_local in a shared object costs a
+      // call (__tls_get_addr), which the materials without a graph need not pay.
+      ClosureArena& arena = shading_scratch().arena;
+      arena.reset();
+      mat.graph->add_closures(registers, sp.tangent, arena, bsdf);
     }
   } else {
     for (const BxDFPtr& c : mat.components) bsdf.add(c.get());
