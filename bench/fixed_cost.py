@@ -58,10 +58,11 @@ def timed_render(engine, spec, spp, seed, threads, cpu_seconds=None):
 
 def main():
     args = parse_args()
-    for path in (ROOT, HERE, os.environ.get("BXDF_PYTHONPATH", ""), os.path.join(ROOT, "build", "python")):
-        if path and path not in sys.path:
-            sys.path.insert(0, path)
+    if HERE not in sys.path:
+        sys.path.insert(0, HERE)
     import side_by_side
+
+    side_by_side.use_module_paths()
 
     spec, _ = side_by_side.set_up_scene(args.scene, None)  # enables the add-on
     from bxdf_lab import engine, render_report

@@ -105,11 +105,17 @@ def render(engine, spec, spp, seed, threads, path, cycles_pattern=None):
     return seconds, cpu_seconds, image
 
 
+def use_module_paths():
+    """Puts the repository (compare/) and the bxdf module on sys.path: BXDF_PYTHONPATH's build
+    before the repository's build/python, so that another build can be measured."""
+    for path in (ROOT, os.path.join(ROOT, "build", "python"), os.environ.get("BXDF_PYTHONPATH", "")):
+        if path and path not in sys.path:
+            sys.path.insert(0, path)  # the last inserted is searched first
+
+
 def main():
     args = parse_args()
-    for path in (ROOT, os.environ.get("BXDF_PYTHONPATH", ""), os.path.join(ROOT, "build", "python")):
-        if path and path not in sys.path:
-            sys.path.insert(0, path)
+    use_module_paths()
     import numpy as np
 
     spec, labels = set_up_scene(args.scene, args.res)

@@ -42,15 +42,16 @@ def parse_args():
 
 def main():
     args = parse_args()
-    for path in (HERE, os.environ.get("BXDF_PYTHONPATH", ""), os.path.join(ROOT, "build", "python")):
-        if path and path not in sys.path:
-            sys.path.insert(0, path)
+    if HERE not in sys.path:
+        sys.path.insert(0, HERE)
+    import side_by_side as sbs
+
+    sbs.use_module_paths()
     import tempfile
     from dataclasses import replace
 
     import numpy as np
 
-    import side_by_side as sbs
     from compare import scenes
 
     full = scenes.get("principled_showroom")

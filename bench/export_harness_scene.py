@@ -1,0 +1,62 @@
+"""Writes a harness scene as the add-on hands it to bxdf.render, for profiling outside Blender.
+
+    blender -b --factory-startup --python-exit-code 1 --python bench/export_harness_scene.py -- \
+        --scene cornell --out /tmp/cornell.pickle
+
+Builds the scene as bench/side_by_side.py does (materials set up by the add-on for both engines),
+renders it once with BXDF_LAB at 1 sample and keeps the scene data and settings the add-on passed
+to bxdf.render (its export, node programs and all). bench/render_exported.py then renders that
+file with /usr/bin/python3 alone, where `perf` and `valgrind --tool=callgrind` see only the
+renderer: the harness scene's own instruction count, steady from run to run, unlike its time.
+"""
+import argparse
+import os
+import pickle
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    p = argparse.ArgumentParser(prog="export_harness_scene.py", description=__doc__.splitlines()[0])
+    p.add_argument("--scene", default="cornell", help="harness scene name (compare/scenes.py)")
+    p.add_argument("--out", required=True, help="pickle file to write")
+    return p.parse_args(argv)
+
+
+def main():
+    args = parse_args()
+    if HERE not in sys.path:
+        sys.path.insert(0, HERE)
+    import side_by_side
+
+    side_by_side.use_module_paths()
+    spec, _ = side_by_side.set_up_scene(args.scene, None)  # enables the add-on
+    from bxdf_lab import renderer
+
+    captured = {}
+    original = renderer.render
+
+    def capture(scene_data, settings, on_progress, partial_images=True):
+        captured["scene"], captured["settings"] = scene_data, dict(settings)
+        return original(scene_data, settings, on_progress, partial_images)
+
+    renderer.render = capture
+    try:
+        image = os.path.join(tempfile.mkdtemp(prefix="bxdf-export-"), "one.exr")
+        side_by_side.render("BXDF_LAB", spec, 1, 1, 2, image)
+    finally:
+        renderer.render = original
+    if "scene" not in captured:
+        sys.exit("export_harness_scene: the BXDF_LAB render did not reach bxdf.render")
+    with open(args.out, "wb") as f:
+        pickle.dump({"harness_scene": args.scene, "scene": captured["scene"],
+                     "settings": captured["settings"]}, f)
+    print(f"export_harness_scene: {args.scene} written to {args.out}")
+
+
+if __name__ == "__main__":
+    main()
