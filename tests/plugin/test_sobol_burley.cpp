@@ -155,6 +155,15 @@ TEST(SobolBurley, ReverseBitsReverses) {
   EXPECT_EQ(sobol::reverse_bits(0x12345678u), 0x1e6a2c48u);
 }
 
+TEST(SobolBurley, ReversedToUnitFloatIsTheFloatOfTheReversal) {
+  uint32_t x = 1u;
+  for (int k = 0; k < 100000; ++k, x = sobol::hash(x + uint32_t(k)))
+    ASSERT_EQ(sobol::reversed_to_unit_float(x), sobol::to_unit_float(sobol::reverse_bits(x))) << x;
+  for (uint32_t bit = 0; bit < 32; ++bit)
+    EXPECT_EQ(sobol::reversed_to_unit_float(1u << bit),
+              sobol::to_unit_float(sobol::reverse_bits(1u << bit))) << bit;
+}
+
 TEST(PathSampler, DimensionSetsAreDecorrelated) {
   // E[u v] = 1/4 for independent uniforms; the same seed reused for two purposes would give
   // E[u^2] = 1/3. Taken over many pixels and samples.

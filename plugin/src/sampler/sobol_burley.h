@@ -80,6 +80,23 @@ inline uint32_t sobol(uint32_t index, int d) {
 // [0, 1): the top 24 bits, so that the float is never rounded up to 1.
 inline float to_unit_float(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
 
+// Every byte value with its bits reversed.
+inline constexpr std::array<uint8_t, 256> kReversedBytes = [] {
+  std::array<uint8_t, 256> t{};
+  for (uint32_t v = 0; v < 256; ++v) t[v] = static_cast<uint8_t>(reverse_bits(v) >> 24);
+  return t;
+}();
+
+// to_unit_float(reverse_bits(x)), from the three low bytes of x, the only ones that reach the
+// float's 24 bits: a table lookup per byte is cheaper than reversing all 32 bits (a sample's
+// draws do this once per coordinate).
+inline float reversed_to_unit_float(uint32_t x) {
+  const uint32_t top24 = (uint32_t(kReversedBytes[x & 0xffu]) << 16) |
+                         (uint32_t(kReversedBytes[(x >> 8) & 0xffu]) << 8) |
+                         kReversedBytes[(x >> 16) & 0xffu];
+  return static_cast<float>(top24) * 0x1p-24f;
+}
+
 // Per-coordinate seeds of sample() (entry kDimensions: the index shuffle): arbitrary distinct
 // constants mixed with the seed through the hash.
 inline constexpr uint32_t kSalt[kDimensions + 1] = {0x9e78e391u, 0x67c33241u, 0x78c395c5u,
@@ -108,7 +125,7 @@ std::array<float, N> sample_reversed(uint32_t reversed_index, uint32_t seed) {
                  t[2][(reversed_shuffled >> 16) & 0xffu] ^ t[3][reversed_shuffled >> 24];
     }
     out[static_cast<std::size_t>(d)] =
-        to_unit_float(reverse_bits(owen_scramble_reversed(reversed, hash(seed ^ kSalt[d]))));
+        reversed_to_unit_float(owen_scramble_reversed(reversed, hash(seed ^ kSalt[d])));
   }
   return out;
 }
