@@ -16,7 +16,6 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
 
 
 def parse_args():
@@ -33,7 +32,6 @@ def main():
         sys.path.insert(0, HERE)
     import side_by_side
 
-    side_by_side.use_module_paths()
     spec, _ = side_by_side.set_up_scene(args.scene, None)  # enables the add-on
     from bxdf_lab import renderer
 

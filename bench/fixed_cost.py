@@ -62,8 +62,6 @@ def main():
         sys.path.insert(0, HERE)
     import side_by_side
 
-    side_by_side.use_module_paths()
-
     spec, _ = side_by_side.set_up_scene(args.scene, None)  # enables the add-on
     from bxdf_lab import engine, render_report
     for name in ("BXDF_LAB", "CYCLES"):  # warm-up: first-render costs are not the fixed cost

@@ -53,6 +53,7 @@ def set_up_scene(scene_name, resolution):
     """Builds the harness scene once, with every material set up for both engines."""
     from dataclasses import replace
 
+    use_module_paths()
     from compare import scenes
 
     spec = scenes.get(scene_name)
@@ -63,6 +64,7 @@ def set_up_scene(scene_name, resolution):
 
 def set_up_spec(spec):
     """Builds a scene spec (compare/scenes.py) in Blender, every material set up for both engines."""
+    use_module_paths()
     import bpy
 
     from compare import bpy_build, driver, engine_setup, material_setup
