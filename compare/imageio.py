@@ -8,10 +8,19 @@ import OpenImageIO as oiio
 def read(path) -> np.ndarray:
     """HxWx3 float32, rows top-down, values as stored (a linear 16-bit PNG is scaled to [0, 1]
     with no transfer function applied)."""
-    buf = oiio.ImageBuf(str(path))
-    pixels = buf.get_pixels(oiio.FLOAT)
-    if buf.has_error or pixels is None or pixels.size == 0:
-        raise OSError(f"cannot read image {path}: {buf.geterror()}")
+    # Read past OIIO's shared image cache, which an ImageBuf goes through: a file rewritten under
+    # the same name within its timestamp's resolution read back as the old image (seen in
+    # Blender, one render after another to the same path).
+    inp = oiio.ImageInput.open(str(path))
+    if inp is None:
+        raise OSError(f"cannot read image {path}: {oiio.geterror()}")
+    try:
+        pixels = inp.read_image(oiio.FLOAT)
+        error = inp.geterror() if pixels is None else ""
+    finally:
+        inp.close()
+    if pixels is None or pixels.size == 0:
+        raise OSError(f"cannot read image {path}: {error or 'no pixels'}")
     if pixels.ndim == 2:
         pixels = pixels[..., None]
     if pixels.shape[2] == 1:
