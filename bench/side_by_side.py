@@ -72,7 +72,9 @@ def set_up_spec(spec):
     driver.enable_addons({"engine": "BXDF_LAB", "repo_root": ROOT})
     bpy_build.clear_scene()
     materials = {m.name: bpy.data.materials.new(m.name) for m in spec.materials()}
-    objects = bpy_build.build(spec, materials)
+    # Generated world images (a z-gradient world) go to a folder of their own.
+    world_dir = tempfile.mkdtemp(prefix="bxdf-side-by-side-world-")
+    objects = bpy_build.build(spec, materials, world_dir)
     engine_setup.common_settings(spec)
     labels = {}
     for mat_spec in spec.materials():
