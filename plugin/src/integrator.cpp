@@ -264,11 +264,7 @@ void PathTracer::advance_deferring_shadow(PathState& s, const PathSampler& sampl
                                           PathStats& stats, const Hit* hit,
                                           const PreparedHit* prepared,
                                           const Vec3* registers) const {
-  if (!hit) {
-    advance(s, sampler, stats, nullptr);  // escaped: no light sample, nothing to defer
-    return;
-  }
-  step(s, sampler, stats, hit, prepared, registers);
+  step(s, sampler, stats, hit, prepared, registers);  // an escaped path samples no light
 }
 
 void PathTracer::test_shadow(PathState& s) const {

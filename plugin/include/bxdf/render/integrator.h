@@ -120,7 +120,8 @@ class PathTracer {
                const PreparedHit& prepared, const Vec3* registers) const;
   // The same as that advance(), but the vertex's shadow ray may stay pending (s.shadow): the
   // caller tests it, for many paths at once (Scene::occluded_stream), and calls
-  // resolve_shadow(s, occluded) before the path's next vertex and before finish().
+  // resolve_shadow(s, occluded) before the path's next vertex and before finish(). A null
+  // `hit` (and `prepared`) is an escaped ray.
   void advance_deferring_shadow(PathState& s, const PathSampler& sampler, PathStats& stats,
                                 const Hit* hit, const PreparedHit* prepared,
                                 const Vec3* registers) const;
