@@ -51,10 +51,15 @@ def cycles_quirks(spec: SceneSpec, material) -> list:
     params = material.params
     quirks = []
     light_found_by_sampling = spec.max_bounces > 0 or any(spec.world_color)
-    if is_multiscatter(material) and light_found_by_sampling:
-        quirks.append(f"{material.name}: Cycles' multiscatter GGX eval and sampling walks "
-                      "disagree (white reflection at α 0.64: 0.922 by eval, 1.000 by the walk), "
-                      "which light found by sampling shows; BXDF_LAB follows the eval")
+    # Multiscatter GGX: Cycles' eval walk and sampling walk disagree (white reflection at α 0.64:
+    # 0.922 by eval, 1.000 by the walk); BXDF_LAB evaluates with the one and samples with the
+    # other as Cycles does, and weighs them by the same pdf (mf_ggx_pdf) for reflection. For
+    # the glass its MIS pdf is the normalised blend, not Cycles' mf_glass_pdf, so where a light
+    # is found both ways the two walks are mixed in other proportions.
+    if is_multiscatter_glass(material) and soft_lighting(spec):
+        quirks.append(f"{material.name}: Cycles weighs its multiscatter glass's eval and "
+                      "sampling walks (which disagree) by mf_glass_pdf in MIS, BXDF_LAB by a "
+                      "normalised pdf, which light found by both light and BSDF sampling shows")
     if (material.model == "cycles_principled" and params.get("clearcoat", 0.0) > 0.0
             and light_found_by_sampling):
         quirks.append(f"{material.name}: Cycles samples the clearcoat with GGX but reports "
@@ -67,6 +72,13 @@ def is_multiscatter(material) -> bool:
     return (material.model in ("cycles_glossy", "cycles_glass", "cycles_refraction",
                                "cycles_principled")
             and material.params.get("distribution") == "multi_ggx")
+
+
+def is_multiscatter_glass(material) -> bool:
+    return is_multiscatter(material) and (
+        material.model in ("cycles_glass", "cycles_refraction")
+        or (material.model == "cycles_principled" and material.params.get("transmission", 0.0) > 0.0
+            and material.params.get("metallic", 0.0) < 1.0))
 
 
 def analytic_limits(material) -> list:

@@ -233,8 +233,9 @@ def sweep_principled_transmission():
 
 def sweep_principled_multiscatter():
     """Single-scatter GGX (top) against multiscatter GGX (bottom) in a white world (no lights):
-    the light is found by sampling, where Cycles' multiscatter sampling walk and its eval walk
-    disagree (pairings.cycles_quirks); the top row shows the rest of the scene agreeing."""
+    the light is found by BSDF sampling alone, which for multiscatter GGX is Cycles' sampling
+    walk (it disagrees with the eval walk: multiscatter_ggx.h), in BXDF_LAB as in Cycles; the
+    top row shows the rest of the scene agreeing."""
     columns = [{"metallic": 1.0, "base_color": (0.95, 0.95, 0.95), "roughness": r}
                for r in (0.3, 0.5, 0.7, 0.9)] + [{"roughness": 0.6}]
     return replace(_principled_grid(

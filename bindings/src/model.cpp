@@ -95,7 +95,7 @@ py::array_t<float> model_pdf(const Model& m, py::handle wo_arg, py::handle wi_ar
   return out;
 }
 
-py::tuple model_sample_f(const Model& m, py::handle wo_arg, py::handle u_arg) {
+py::tuple model_sample_f(const Model& m, py::handle wo_arg, py::handle u_arg, bool exact) {
   const VectorRows wo = vector_rows(wo_arg, "wo", 3);
   const VectorRows u = vector_rows(u_arg, "u", 2);
   require_in_range(u.array, "u", 0.0f, 1.0f, "[0, 1) (1 is taken as the largest float below 1)");
@@ -112,8 +112,19 @@ py::tuple model_sample_f(const Model& m, py::handle wo_arg, py::handle u_arg) {
       SoA2 u_s{};  // zeroed: GCC cannot see that gather2 fills what sample_f_batch reads
       gather3(wo, begin, end - begin, wo_s);
       gather2(u, begin, end - begin, u_s);
-      bxdf.sample_f_batch(end - begin, wo_s.in(), u_s.a, u_s.b, wi_s.out(), f_s.rgb(),
-                          pdf_data + begin);
+      if (exact && !bxdf.sample_f_is_exact()) {
+        // The exact importance sampler of a walk-sampled model has no batch form.
+        for (size_t i = 0; i < end - begin; ++i) {
+          const BxDFSample s = bxdf.sample_f_exact(Vec3(wo_s.a[i], wo_s.b[i], wo_s.c[i]),
+                                                   Point2(u_s.a[i], u_s.b[i]));
+          wi_s.a[i] = s.wi.x, wi_s.b[i] = s.wi.y, wi_s.c[i] = s.wi.z;
+          f_s.a[i] = s.f.r, f_s.b[i] = s.f.g, f_s.c[i] = s.f.b;
+          pdf_data[begin + i] = s.pdf;
+        }
+      } else {
+        bxdf.sample_f_batch(end - begin, wo_s.in(), u_s.a, u_s.b, wi_s.out(), f_s.rgb(),
+                            pdf_data + begin);
+      }
       // A failed sample (pdf 0) leaves wi undefined in the core; Python gets zeros.
       for (size_t i = 0; i < end - begin; ++i)
         if (!(pdf_data[begin + i] > 0.0f)) wi_s.a[i] = wi_s.b[i] = wi_s.c[i] = 0.0f;
@@ -259,14 +270,22 @@ Delta (specular) lobes give 0 here; use sample_f.)doc")
            R"doc(pdf(wo, wi) -> ndarray (N,) float32
 
 The solid-angle density with which sample_f(wo, .) chooses `wi`. Delta lobes give 0.)doc")
-      .def("sample_f", &model_sample_f, py::arg("wo"), py::arg("u"),
-           R"doc(sample_f(wo, u) -> (wi (N, 3), f (N, 3), pdf (N,)), all float32
+      .def_property_readonly(
+          "sample_f_is_exact", [](const Model& self) { return self->sample_f_is_exact(); },
+          "False for a model whose sample_f runs Cycles' multiscatter GGX sampling walk (its f "
+          "is then the walk's weight times pdf/|cos theta_i|, not f(wo, wi)); "
+          "sample_f(..., exact=True) is its exact importance sampler.")
+      .def("sample_f", &model_sample_f, py::arg("wo"), py::arg("u"), py::arg("exact") = false,
+           R"doc(sample_f(wo, u, exact=False) -> (wi (N, 3), f (N, 3), pdf (N,)), all float32
 
 Importance-samples an incident direction for each row of `wo` ((N, 3) or (3,)) from the
 uniform numbers `u` ((N, 2) or (2,), each in [0, 1); non-finite or out-of-range u is a
 ValueError). Returns the unit direction wi, the value f(wo, wi) and its density pdf. For a
 delta lobe pdf is 1 and f is the seed's weight. When no sample exists (pdf = 0), wi and f
-are 0.)doc")
+are 0. A multiscatter GGX model (sample_f_is_exact False) samples as Cycles does, with its
+random walk: f |cos theta_i| / pdf is the walk's weight and pdf is pdf(wo, wi) (Cycles'
+approximate pdf), so f differs from f(wo, wi); exact=True draws wi from pdf instead, with f
+and pdf those of wi.)doc")
       .def("rho", &model_rho, py::arg("wo"), py::arg("n_samples"), py::arg("seed") = 0,
            R"doc(rho(wo, n_samples, seed=0) -> ndarray (N, 3) float32
 

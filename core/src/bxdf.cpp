@@ -78,7 +78,7 @@ RGB BxDF::rho_hd(const Vec3& wo_in, int n_samples, uint64_t seed) const {
   PCG32 rng(seed);
   double sum[3] = {0, 0, 0};
   for (int i = 0; i < n; ++i) {
-    const BxDFSample s = sample_f(wo, stratified(i, side, rng));
+    const BxDFSample s = sample_f_exact(wo, stratified(i, side, rng));
     if (!s.valid()) continue;
     const float w = std::fabs(s.wi.z) / s.pdf;
     for (int c = 0; c < 3; ++c) sum[c] += static_cast<double>(s.f[c] * w);
@@ -99,7 +99,7 @@ RGB BxDF::rho_hh(int n_samples, uint64_t seed) const {
     const int stratum = static_cast<int>(
         permuted_index(static_cast<uint32_t>(i), static_cast<uint32_t>(n), perm_seed));
     const Vec3 wo = sample_uniform_hemisphere(stratified(stratum, side, rng));
-    const BxDFSample s = sample_f(wo, stratified(i, side, rng));
+    const BxDFSample s = sample_f_exact(wo, stratified(i, side, rng));
     if (!s.valid()) continue;
     const float w = std::fabs(s.wi.z) * std::fabs(wo.z) / (s.pdf * uniform_hemisphere_pdf());
     for (int c = 0; c < 3; ++c) sum[c] += static_cast<double>(s.f[c] * w);

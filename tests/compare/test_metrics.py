@@ -1,8 +1,11 @@
 """Unit tests of the diff figures, the z-test and the pairing labels (no Blender)."""
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from compare import analytic, metrics, pairings, scenes
+from compare.scene_spec import AreaLight
 
 
 def _noisy(rng, mean, sigma):
@@ -144,15 +147,22 @@ def test_black_background_does_not_dilute_a_wrong_highlight():
 
 
 def test_measured_cycles_quirks_make_their_pairings_approximate():
-    # Multiscatter GGX: Cycles' eval and sampling walks disagree, which only light found by
-    # sampling shows (the white world); under a point light with direct light only Cycles
+    # Multiscatter GGX: Cycles' eval and sampling walks disagree; BXDF_LAB samples with the
+    # sampling walk and evaluates with the eval walk as Cycles does, so light found by sampling
+    # (the white world) is exact as well. Under a point light with direct light only Cycles
     # evaluates its walk alone, and BXDF_LAB (walks salted per sample) converges to the same
     # expectation: exact. The analytic image's f is evaluated once per pixel: approximate, and
     # that reason names BxDF Lab's estimate, not Cycles.
     multi = scenes.get("sweep_principled_multiscatter")
-    assert pairings.label(multi, "BXDF_LAB", "CYCLES") == "approximate"
-    reasons = pairings.approximations(multi, "BXDF_LAB", "CYCLES")
-    assert len(reasons) == 5 and all("sampling walk" in r and "16-walk" not in r for r in reasons)
+    assert pairings.label(multi, "BXDF_LAB", "CYCLES") == "exact"
+    assert pairings.approximations(multi, "BXDF_LAB", "CYCLES") == []
+    # Multiscatter glass under a soft light: Cycles' MIS pdf for it is not BXDF_LAB's.
+    glass = replace(multi, objects=tuple(
+        replace(o, material=replace(o.material, params={**o.material.params, "transmission": 1.0,
+                                                         "metallic": 0.0}))
+        for o in multi.objects), lights=(AreaLight((0.0, -3.0, 3.0), (0.0, 1.0, -1.0), "SQUARE", 100.0, 1.0),))
+    reasons = pairings.approximations(glass, "BXDF_LAB", "CYCLES")
+    assert len(reasons) == 5 and all("mf_glass_pdf" in r for r in reasons)
     direct = scenes.get("sweep_principled_multiscatter_direct")
     assert direct.has_analytic_truth()
     assert pairings.label(direct, "BXDF_LAB", "CYCLES") == "exact"

@@ -145,9 +145,19 @@ Chi2Result run_chi2(const BxDF& model, const Vec3& wo, const Chi2Config& c) {
         u1[s] = rng.uniform();
         u2[s] = rng.uniform();
       }
-      model.sample_f_batch(n, {wox.data(), woy.data(), woz.data()}, u1.data(), u2.data(),
-                           {x.data(), y.data(), z.data()}, {fr.data(), fg.data(), fb.data()},
-                           pdf.data());
+      if (model.sample_f_is_exact()) {
+        model.sample_f_batch(n, {wox.data(), woy.data(), woz.data()}, u1.data(), u2.data(),
+                             {x.data(), y.data(), z.data()}, {fr.data(), fg.data(), fb.data()},
+                             pdf.data());
+      } else {  // the model's exact importance sampler (its sample_f runs Cycles' walk)
+        for (size_t s = 0; s < n; ++s) {
+          const BxDFSample smp = model.sample_f_exact(wo, Point2(u1[s], u2[s]));
+          x[s] = smp.wi.x;
+          y[s] = smp.wi.y;
+          z[s] = smp.wi.z;
+          pdf[s] = smp.pdf;
+        }
+      }
       for (size_t s = 0; s < n; ++s) {
         if (!(pdf[s] > 0.0f)) continue;
         const Vec3 wi(x[s], y[s], z[s]);

@@ -1,4 +1,5 @@
-// χ² goodness of fit of a model's sample_f against its own pdf, the way pbrt-v3
+// χ² goodness of fit of a model's sample_f (sample_f_exact for a model whose sample_f runs
+// Cycles' sampling walk, BxDF::sample_f_is_exact) against its own pdf, the way pbrt-v3
 // (src/tests/bsdfs.cpp) and Mitsuba (chi2.py) test BSDFs: sampled directions are binned on an
 // area-preserving (φ, cosθ) grid over the whole sphere, the expected count of each cell is
 // N × the integral of pdf over the cell (adaptive Simpson), low-expectation cells are pooled,

@@ -26,12 +26,15 @@ constexpr float kBound = 1.01f;
 
 class ModelEnergy : public ::testing::TestWithParam<std::string> {};
 
-// Monte Carlo over sample_f with independent random numbers, split by the side wi lands on.
-Albedo sampled_albedo(const BxDF& m, const Vec3& wo, uint64_t seed) {
+// Monte Carlo over sample_f with independent random numbers, split by the side wi lands on:
+// over the exact sampler (sample_f_exact), or with `walk` over sample_f as it is (Cycles'
+// sampling walk for multiscatter GGX, whose energy is the walk's, not f's).
+Albedo sampled_albedo(const BxDF& m, const Vec3& wo, uint64_t seed, bool walk = false) {
   PCG32 rng(seed);
   double sum[6] = {0, 0, 0, 0, 0, 0};
   for (int i = 0; i < kSamples; ++i) {
-    const BxDFSample s = m.sample_f(wo, Point2(rng.uniform(), rng.uniform()));
+    const Point2 u(rng.uniform(), rng.uniform());
+    const BxDFSample s = walk ? m.sample_f(wo, u) : m.sample_f_exact(wo, u);
     if (!s.valid()) continue;
     const int side = s.wi.z * wo.z > 0.0f ? 0 : 3;
     const double w = std::fabs(s.wi.z) / s.pdf;
@@ -114,6 +117,10 @@ TEST_P(ModelEnergy, WhiteFurnace) {
       if (e.energy_conserving()) {
         EXPECT_LE(flux.max_component(), kBound) << what << ": albedo " << rgb(flux)
                                                 << " (Monte Carlo " << rgb(flux_albedo(*m, dir.wo, mc)) << ")";
+        if (!m->sample_f_is_exact()) {  // the sampling walk conserves energy too
+          const RGB walk = flux_albedo(*m, dir.wo, sampled_albedo(*m, dir.wo, 2000 + d, true));
+          EXPECT_LE(walk.max_component(), kBound) << what << ": the walk's albedo " << rgb(walk);
+        }
       }
     }
     if (!e.energy_conserving()) {

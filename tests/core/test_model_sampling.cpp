@@ -1,7 +1,8 @@
 // Sampling tests for every registered model, every curated parameter set and every incident
 // direction: χ² goodness of fit of sample_f against pdf (Šidák-corrected over all runs),
 // agreement of the pdf and f that sample_f returns with pdf() and f(), and the delta lobes'
-// own rules.
+// own rules. For a model whose sample_f runs Cycles' sampling walk these hold for its exact
+// sampler, sample_f_exact; its sample_f has a test of its own.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -103,7 +104,7 @@ TEST_P(ModelSampling, SampleReturnsPdfAndF) {
       std::string first;
       for (int s = 0; s < kSamples; ++s) {
         const Point2 u(rng.uniform(), rng.uniform());
-        const BxDFSample smp = m->sample_f(wo, u);
+        const BxDFSample smp = m->sample_f_exact(wo, u);
         if (!smp.valid()) continue;
         const float pdf = m->pdf(wo, smp.wi);
         const RGB f = m->f(wo, smp.wi);
@@ -127,6 +128,40 @@ TEST_P(ModelSampling, SampleReturnsPdfAndF) {
                                     << " f mismatches in " << kSamples << " samples; first: "
                                     << first;
     }
+  }
+}
+
+// A model whose sample_f runs Cycles' sampling walk (multiscatter GGX): its pdf is still
+// pdf() of the direction (what MIS needs), its weight f·|cos θi|/pdf finite and non-negative,
+// and its f differs from f() (the walk is not the eval; if they agreed, the flag would be
+// wrong). Its directions and energy are tested in test_multiscatter_ggx.cpp and the energy test.
+TEST_P(ModelSampling, WalkSampleReportsPdfAndAFiniteWeight) {
+  const std::string& model = GetParam();
+  constexpr int kSamples = 5000;
+  for (const GridEntry& e : grid_for(model)) {
+    const BxDFPtr m = make_entry(model, e);
+    if (m->is_delta() || m->sample_f_is_exact()) continue;
+    int valid = 0, f_differs = 0, pdf_bad = 0, weight_bad = 0;
+    for (size_t d = 0; d < incident_directions().size(); ++d) {
+      const Vec3 wo = incident_directions()[d].wo;
+      PCG32 rng(run_seed(model, e.label, d) + 11);
+      for (int s = 0; s < kSamples; ++s) {
+        const BxDFSample smp = m->sample_f(wo, Point2(rng.uniform(), rng.uniform()));
+        if (!smp.valid()) continue;
+        ++valid;
+        pdf_bad += !close(smp.pdf, m->pdf(wo, smp.wi), 1e-3f, 1e-6f);
+        const RGB weight = smp.f * (std::fabs(smp.wi.z) / smp.pdf);
+        weight_bad += !finite_nonnegative(weight);
+        const RGB f = m->f(wo, smp.wi);
+        f_differs += !(close(smp.f.r, f.r, 1e-3f, 1e-6f) && close(smp.f.g, f.g, 1e-3f, 1e-6f) &&
+                       close(smp.f.b, f.b, 1e-3f, 1e-6f));
+      }
+    }
+    EXPECT_GT(valid, kSamples) << describe(model, e);
+    EXPECT_EQ(pdf_bad, 0) << describe(model, e) << ": walk samples whose pdf is not pdf()";
+    EXPECT_EQ(weight_bad, 0) << describe(model, e) << ": walk samples with a bad weight";
+    EXPECT_GT(f_differs, valid / 10) << describe(model, e)
+                                     << ": sample_f agrees with f(): is it still a walk?";
   }
 }
 

@@ -314,3 +314,69 @@ TEST(MultiscatterGGX, EvaluationWalkAgreesWithSamplingWalkWhereCyclesDoesNotSwap
     }
   }
 }
+
+// sample_walk is Cycles' sampling walk with its first facet stratified by u: binned by side and
+// cos θi, its throughput-weighted exits match those of walk_sample (every draw from the
+// generator, as Cycles' mf_sample) within 5 standard errors per bin, and it is a deterministic
+// function of (wo, u) outside a salt scope and another walk inside one.
+TEST(MultiscatterGGX, SampleWalkIsTheSamplingWalk) {
+  const MultiscatterGGXReflection refl(
+      reflection_setup(0.5f, 0.3f, MultiscatterFresnel::kInterpolated));
+  const MultiscatterGGXGlass glass(glass_setup(0.5f, 1.5f, MultiscatterFresnel::kColor));
+  constexpr int kN = 100000, kBins = 8;
+  for (int idx = 0; idx < 2; ++idx) {
+    for (const Vec3& wo : {dir(30, 20), dir(75, 200), dir(130, 70)}) {
+      double sum[2][2 * kBins] = {}, sum2[2][2 * kBins] = {};
+      PCG32 rng(31 + idx), walk_rng(41 + idx);
+      int refused = 0;
+      for (int i = 0; i < kN; ++i) {
+        const Point2 u(rng.uniform(), rng.uniform());
+        const WalkSample s = idx == 0 ? refl.sample_walk(wo, u) : glass.sample_walk(wo, u);
+        Vec3 wi;
+        const RGB t = idx == 0 ? refl.walk_sample(wo, walk_rng, &wi) : glass.walk_sample(wo, walk_rng, &wi);
+        const auto bin = [&](const Vec3& w) {
+          return std::min(static_cast<int>(std::fabs(w.z) * kBins), kBins - 1) +
+                 (w.z * wo.z > 0.0f ? 0 : kBins);
+        };
+        if (s.ok) {
+          ASSERT_NEAR(length(s.wi), 1.0f, 1e-6f);
+          EXPECT_TRUE(finite_nonnegative(s.weight));
+          EXPECT_EQ((s.flags & kReflection) != 0, s.wi.z * wo.z > 0.0f);
+          sum[0][bin(s.wi)] += s.weight.g;
+          sum2[0][bin(s.wi)] += s.weight.g * s.weight.g;
+        } else {
+          ++refused;
+        }
+        if (!t.is_black()) {
+          sum[1][bin(wi)] += t.g;
+          sum2[1][bin(wi)] += t.g * t.g;
+        }
+        if (i < 100) {  // deterministic in (wo, u); a salt gives another walk
+          const WalkSample again = idx == 0 ? refl.sample_walk(wo, u) : glass.sample_walk(wo, u);
+          EXPECT_TRUE(again.wi == s.wi && again.weight == s.weight);
+        }
+      }
+      EXPECT_LT(refused, kN / 100);
+      for (int b = 0; b < 2 * kBins; ++b) {
+        double var = 0.0;
+        for (int k = 0; k < 2; ++k) {
+          const double mean = sum[k][b] / kN;
+          var += (sum2[k][b] / kN - mean * mean) / kN;
+        }
+        EXPECT_NEAR(sum[0][b] / kN, sum[1][b] / kN, 5.0 * std::sqrt(var) + 1e-4)
+            << (idx == 0 ? "reflection" : "glass") << " wo.z " << wo.z << " bin " << b;
+      }
+    }
+  }
+  // Inside a salt scope the same (wo, u) walks elsewhere after its first facet (which u picks):
+  // the walks that bounce more than once change.
+  const Vec3 wo = dir(40, 10);
+  int changed = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Point2 u((i + 0.5f) / 200.0f, 0.37f);
+    const WalkSample plain = refl.sample_walk(wo, u);
+    const MultiscatterWalkSalt salt(1234567u + i);
+    changed += !(refl.sample_walk(wo, u).wi == plain.wi);
+  }
+  EXPECT_GT(changed, 5);
+}

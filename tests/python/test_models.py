@@ -206,9 +206,11 @@ def test_large_batches_match_the_scalar_path(rng):
             np.testing.assert_allclose(g, w, rtol=1e-6)
 
 
-def test_sampled_directions_agree_with_f_and_pdf(variant, rng):
+@pytest.mark.parametrize("exact", [False, True], ids=["sample_f", "exact"])
+def test_sampled_directions_agree_with_f_and_pdf(variant, rng, exact):
     wo = random_directions(rng, 2000, lower_fraction=0.0)
-    wi, f, pdf = variant.sample_f(wo, rng.random((2000, 2)))
+    u = rng.random((2000, 2))
+    wi, f, pdf = variant.sample_f(wo, u, exact=exact)
     ok = pdf > 0
     assert ok.mean() > 0.5, "most samples from above the surface should succeed"
     assert np.all(np.isfinite(wi)) and np.all(f >= 0) and np.all(pdf >= 0)
@@ -219,11 +221,31 @@ def test_sampled_directions_agree_with_f_and_pdf(variant, rng):
         assert np.all(variant.f(wo[ok], wi[ok]) == 0) and np.all(variant.pdf(wo[ok], wi[ok]) == 0)
         assert np.all(pdf[ok] == 1.0)
     else:
-        # The sample's f and pdf are the model's f and pdf for that pair (grazing excluded:
-        # there a float32 round trip of wi may cross the horizon).
+        # The sample's pdf is the model's pdf for that pair (grazing excluded: there a float32
+        # round trip of wi may cross the horizon), and so is its f, except for Cycles'
+        # multiscatter sampling walk, whose f carries the walk's weight (sample_f_is_exact).
         keep = ok & (np.abs(wi[:, 2]) > 1e-3)
-        np.testing.assert_allclose(variant.f(wo[keep], wi[keep]), f[keep], rtol=2e-3, atol=1e-6)
         np.testing.assert_allclose(variant.pdf(wo[keep], wi[keep]), pdf[keep], rtol=2e-3, atol=1e-6)
+        if exact or variant.sample_f_is_exact:
+            np.testing.assert_allclose(variant.f(wo[keep], wi[keep]), f[keep], rtol=2e-3, atol=1e-6)
+        else:
+            assert not np.allclose(variant.f(wo[keep], wi[keep]), f[keep], rtol=2e-3, atol=1e-6)
+            weight = f[keep] * (np.abs(wi[keep, 2]) / pdf[keep])[:, None]
+            assert np.all(np.isfinite(weight)) and weight.mean() <= 1.01
+    if variant.sample_f_is_exact:
+        # exact=True is sample_f itself for every model that does not walk.
+        other = variant.sample_f(wo, u, exact=not exact)
+        for a, b in zip((wi, f, pdf), other):
+            np.testing.assert_array_equal(a, b)
+
+
+def test_only_multiscatter_ggx_samples_by_a_walk():
+    for name in bxdf.models():
+        assert bxdf.make(name).sample_f_is_exact, name
+    for name in ("cycles_glossy", "cycles_glass", "cycles_principled"):
+        assert not bxdf.make(name, distribution="multi_ggx", roughness=0.5).sample_f_is_exact, name
+    # cycles_refraction's multi_ggx has no Cycles closure to follow: exact sampling.
+    assert bxdf.make("cycles_refraction", distribution="multi_ggx", roughness=0.5).sample_f_is_exact
 
 
 def test_awkward_directions_give_finite_nonnegative_results(variant):

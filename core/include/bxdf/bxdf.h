@@ -73,6 +73,14 @@ class BxDF {
   virtual BxDFSample sample_f(const Vec3& wo, Point2 u) const = 0;
   virtual float pdf(const Vec3& wo, const Vec3& wi) const = 0;
 
+  // False for a model that samples as a Cycles closure does with its random walk (multiscatter
+  // GGX): sample_f then draws wi from the walk and reports the walk's weight as f·|cos θi|/pdf,
+  // with pdf = pdf(wo, wi), Cycles' approximate pdf for MIS, so its f is not f(wo, wi) and its
+  // directions do not follow pdf. sample_f_exact is then the model's exact importance sampler
+  // of f (f and pdf those of its direction, drawn from pdf); for every other model it is sample_f.
+  virtual bool sample_f_is_exact() const { return true; }
+  virtual BxDFSample sample_f_exact(const Vec3& wo, Point2 u) const { return sample_f(wo, u); }
+
   // The part of f(wo, wi) that Cycles builds as diffuse closures (CLOSURE_IS_BSDF_DIFFUSE)
   // inside a model that also has other lobes: the Principled BSDF's diffuse and sheen. Cycles
   // darkens that part by bump_shadowing_term when the closure's normal is perturbed; the
@@ -123,6 +131,10 @@ struct DirectionSample {
 // BxDFImpl normalises inputs, refuses degenerate ones and scrubs every output, so a kernel
 // only has to be right for well-formed input.
 //
+// A model whose sample is not its exact importance sampler (sample_f_is_exact) also provides
+//   BxDFSample sample_exact(const Vec3& wo, Point2 u) const;
+// the one sample_f_exact wraps.
+//
 // A model whose sample's f and pdf are exactly eval(wo, wi) and density(wo, wi) of the drawn
 // direction may also provide
 //   DirectionSample sample_direction(const Vec3& wo, Point2 u) const;
@@ -135,6 +147,12 @@ template <class T>
 struct has_sample_direction<
     T, std::void_t<decltype(std::declval<const T&>().sample_direction(Vec3(), Point2()))>>
     : std::true_type {};
+template <class T, class = void>
+struct has_sample_exact : std::false_type {};
+template <class T>
+struct has_sample_exact<
+    T, std::void_t<decltype(std::declval<const T&>().sample_exact(Vec3(), Point2()))>>
+    : std::true_type {};
 
 template <class Derived>
 class BxDFImpl : public BxDF {
@@ -144,6 +162,15 @@ class BxDFImpl : public BxDF {
   RGB f(const Vec3& wo, const Vec3& wi) const final { return f_one(wo, wi); }
   BxDFSample sample_f(const Vec3& wo, Point2 u) const final { return sample_one(wo, u); }
   float pdf(const Vec3& wo, const Vec3& wi) const final { return pdf_one(wo, wi); }
+  BxDFSample sample_f_exact(const Vec3& wo_in, Point2 u) const final {
+    if constexpr (has_sample_exact<Derived>::value) {
+      Vec3 wo = wo_in;
+      if (!normalize_direction(wo)) return BxDFSample();
+      return guard_sample(derived().sample_exact(wo, clamp_u(u)));
+    } else {
+      return sample_one(wo_in, u);
+    }
+  }
 
   // The batch forms work in blocks: a first pass normalises the directions with selects
   // instead of early returns (a refused direction becomes +z and a cleared `ok` flag), then a

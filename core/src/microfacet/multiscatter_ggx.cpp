@@ -292,9 +292,11 @@ RGB walk_eval(const Walk& p, const Vec3& wi, const Vec3& wo, bool wo_outside, PC
   return eval;
 }
 
-// Cycles' mf_sample: returns the throughput f cos/p and the exit direction.
+// Cycles' mf_sample: returns the throughput f cos/p and the exit direction. `first_facet`,
+// when given, replaces the first visible-normal draw (vndf_rand_x, vndf_rand_y).
 template <bool kGlass>
-RGB walk_sample_impl(const Walk& p, const Vec3& wi, PCG32& rng, Vec3* wo) {
+RGB walk_sample_impl(const Walk& p, const Vec3& wi, PCG32& rng, Vec3* wo,
+                     const Point2* first_facet = nullptr) {
   RGB throughput(1.0f);
   Vec3 wr = -wi;
   float lambda_r = mf_lambda(wr, p.ax, p.ay);
@@ -306,8 +308,14 @@ RGB walk_sample_impl(const Walk& p, const Vec3& wi, PCG32& rng, Vec3* wo) {
       *wo = outside ? wr : -wr;
       return throughput;
     }
-    const float vndf_rand_y = rng.uniform();
-    const float vndf_rand_x = rng.uniform();
+    float vndf_rand_y, vndf_rand_x;
+    if (order == 0 && first_facet != nullptr) {
+      vndf_rand_x = first_facet->x;
+      vndf_rand_y = first_facet->y;
+    } else {
+      vndf_rand_y = rng.uniform();
+      vndf_rand_x = rng.uniform();
+    }
     const Vec3 wm = sample_vndf(-wr, p.ax, p.ay, vndf_rand_x, vndf_rand_y);
     if (!p.use_fresnel && order > 0) throughput *= p.color;
     if constexpr (kGlass) {
@@ -375,6 +383,25 @@ RGB averaged_walks(const Walk& p, const Vec3& start, const Vec3& end, bool end_o
     sum += walk_eval<kGlass>(p, start, end, end_outside, rng);
   }
   return sum * (1.0f / kMultiscatterWalks);
+}
+
+// The generator of one sampling walk: seeded by the bits of wo and u and the thread's salt.
+PCG32 sampling_walk_rng(const Vec3& wo, Point2 u) {
+  const uint64_t h = hash_pair(wo, Vec3(u.x, u.y, 0.0f));
+  return PCG32(0x5a17u, walk_salt == 0 ? h : mix64(h ^ mix64(walk_salt)));
+}
+
+// A walk's exit as a sample: snapped, and refused when it did not leave or lies in the plane.
+WalkSample walk_exit(Vec3 wi, const RGB& weight, bool below) {
+  WalkSample s;
+  if (weight.is_black() || wi.z == 0.0f) return s;
+  if (below) wi.z = -wi.z;
+  if (!snap_to_unit(wi) || wi.z == 0.0f) return s;
+  s.wi = wi;
+  s.weight = weight;
+  s.flags = ((wi.z > 0.0f) == !below ? kReflection : kTransmission) | kGlossy;
+  s.ok = true;
+  return s;
 }
 
 // True when a is the direction Cycles starts the walk from (the shallower one); ties are
@@ -463,6 +490,17 @@ RGB MultiscatterGGXReflection::walk_sample(Vec3 wo, PCG32& rng, Vec3* wi) const 
   const RGB t = walk_sample_impl<false>(walk_of(setup_, false), wo, rng, wi);
   if (below) wi->z = -wi->z;
   return t;
+}
+
+WalkSample MultiscatterGGXReflection::sample_walk(Vec3 wo, Point2 u) const {
+  if (wo.z == 0.0f) return WalkSample();
+  const bool below = wo.z < 0.0f;
+  if (below) wo.z = -wo.z;
+  PCG32 rng = sampling_walk_rng(wo, u);
+  Vec3 wi;
+  const RGB t = walk_sample_impl<false>(walk_of(setup_, false), wo, rng, &wi, &u);
+  if (!(wi.z > 0.0f)) return WalkSample();
+  return walk_exit(wi, t, below);
 }
 
 DirectionSample MultiscatterGGXReflection::sample_direction(Vec3 wo, Point2 u) const {
@@ -600,6 +638,20 @@ RGB MultiscatterGGXGlass::walk_sample(Vec3 wo, PCG32& rng, Vec3* wi) const {
   const RGB t = walk_sample_impl<true>(p, wo, rng, wi);
   if (below) wi->z = -wi->z;
   return t;
+}
+
+WalkSample MultiscatterGGXGlass::sample_walk(Vec3 wo, Point2 u) const {
+  if (wo.z == 0.0f) return WalkSample();
+  Walk p = walk_of(setup_, true);
+  const bool below = wo.z < 0.0f;
+  if (below) {
+    wo.z = -wo.z;
+    p.eta = 1.0f / p.eta;
+  }
+  PCG32 rng = sampling_walk_rng(wo, u);
+  Vec3 wi;
+  const RGB t = walk_sample_impl<true>(p, wo, rng, &wi, &u);
+  return walk_exit(wi, t, below);
 }
 
 DirectionSample MultiscatterGGXGlass::sample_direction(Vec3 wo, Point2 u) const {

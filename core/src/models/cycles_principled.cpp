@@ -310,11 +310,11 @@ bool CyclesPrincipled::lobe_sample(int k, const Vec3& wo, Point2 u, float eta, b
 }
 
 RGB CyclesPrincipled::eval_upper(const Vec3& wo, const Vec3& wi, const Closures& c,
-                                 bool back_face) const {
+                                 bool back_face, int skip) const {
   RGB sum(0.0f);
   for (int k = 0; k < kClosureCount; ++k) {
     if (c.sample_weight[k] == 0.0f && c.weight[k].is_black()) continue;
-    if (s_.singular(k)) continue;
+    if (s_.singular(k) || k == skip) continue;
     sum += c.weight[k] * lobe_f(k, wo, wi, c.eta, back_face);
   }
   return sum;
@@ -367,7 +367,7 @@ float CyclesPrincipled::density(Vec3 wo, Vec3 wi) const {
   return density_upper(wo, wi, closures(wo, back), back);
 }
 
-BxDFSample CyclesPrincipled::sample(Vec3 wo, Point2 u) const {
+BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool walk) const {
   BxDFSample s;
   if (wo.z == 0.0f) return s;
   const bool back = wo.z < 0.0f;
@@ -406,6 +406,24 @@ BxDFSample CyclesPrincipled::sample(Vec3 wo, Point2 u) const {
     }
     s.f = weight / (pick * std::fabs(wi.z));
     s.pdf = 1.0f;
+  } else if (walk && walks(k)) {
+    // Cycles' sample of a multiscatter closure: its walk's exit, eval = weight × walk
+    // throughput × its approximate pdf, plus the other closures' eval there (shader_bsdf_
+    // sample_closure with _shader_bsdf_multi_eval), over the mixture's pdf.
+    const bool specular = k == kSpecularClosure;
+    const microfacet::WalkSample w =
+        specular ? s_.specular_ms.sample_walk(to_tangent(wo), v)
+                 : (back ? s_.glass_ms_back : s_.glass_ms).sample_walk(wo, v);
+    if (!w.ok) return s;
+    wi = specular ? from_tangent(w.wi) : w.wi;
+    if (back) wi.z = -wi.z;
+    if (!microfacet::snap_to_unit(wi)) return s;
+    if (back) wi.z = -wi.z;
+    if (wi.z == 0.0f) return s;
+    s.pdf = density_upper(wo, wi, c, back);
+    const float own_pdf = lobe_density(k, wo, wi, c.eta, back);
+    s.f = c.weight[k] * w.weight * (own_pdf / std::fabs(wi.z)) + eval_upper(wo, wi, c, back, k);
+    s.flags = (wi.z > 0.0f ? kReflection : kTransmission) | kGlossy;
   } else {
     if (!lobe_sample(k, wo, v, c.eta, back, &wi)) return s;
     // f of the multiple-scattering lobes hashes the directions: use the bits f() will see.

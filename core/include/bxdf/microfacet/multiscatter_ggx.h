@@ -38,12 +38,16 @@
 // closure, leaves the first order untinted. These lobes reproduce the eval.
 //
 // Sampling. Cycles samples with the walk itself and reports an approximate pdf (an albedo-
-// weighted blend of single-scattering and cosine pdfs), so its sample and pdf disagree. These
-// lobes sample exactly that blend instead, so sample_direction and density are consistent:
-// reflection picks, with probability a = Cycles' mf_ggx_albedo fit, a GGX visible normal and
-// reflects, else a cosine direction; glass picks a visible normal and reflects or refracts by
-// the Fresnel term, else a cosine direction on the reflected side (probability F(cos θo)) or
-// the transmitted side.
+// weighted blend of single-scattering and cosine pdfs), so its sample and pdf disagree.
+// sample_walk is that sampling walk (its weight bounded by the colours, as Cycles' is); the
+// Cycles models' sample_f uses it, with density() as the reported pdf. sample_direction and
+// density are a consistent pair for exact importance sampling of f (ρ, the χ² tests, and the
+// lobe without a Cycles closure): reflection picks, with probability a = Cycles' mf_ggx_albedo
+// fit, a GGX visible normal and reflects, else a cosine direction; glass picks a visible normal
+// and reflects or refracts by the Fresnel term, else a cosine direction on the reflected side
+// (probability F(cos θo)) or the transmitted side. (Cycles' glass pdf, mf_glass_pdf, weighs
+// its reflection by the Fresnel term at the half vector and uses the transmission albedo fit;
+// it does not integrate to one, so density() keeps the normalised blend.)
 //
 // Conventions: local shading frame, wo and wi unit vectors pointing away from the surface,
 // f without the cosine. Reflection is two-sided (a wo below the surface mirrors both
@@ -103,6 +107,16 @@ class MultiscatterWalkSalt {
   uint64_t previous_;
 };
 
+// A draw of Cycles' sampling walk (mf_sample): the exit direction (snapped, snap_to_unit) and
+// the walk's weight f·|cos θi|/p, which Cycles' closures return from their sample in place of
+// eval/pdf. ok = false when the walk does not leave within 10 bounces (Cycles: weight 0).
+struct WalkSample {
+  Vec3 wi;
+  RGB weight;
+  uint32_t flags = 0;
+  bool ok = false;
+};
+
 // Cycles' helpers (bsdf_util.h, bsdf_microfacet_multi.h), exposed for the models and tests.
 float cycles_fresnel_dielectric_cos(float cos_i, float eta);
 // cspec0 (1 − FH) + FH with FH = (F(cos_lh) − F0)/(1 − F0), F0 = F(1).
@@ -123,6 +137,10 @@ class MultiscatterGGXReflection {
   // Cycles' mf_sample: the exit direction of one walk from wo (into *wi) and its weight
   // f cos θi / p (0 when the walk does not leave within 10 bounces).
   RGB walk_sample(Vec3 wo, PCG32& rng, Vec3* wi) const;
+  // Cycles' sampling walk from wo: its first facet is the visible normal that u picks (the
+  // walk's own first draw, stratified by the caller's u), the rest come from a generator
+  // seeded by the bits of wo and u and the thread's walk salt (Cycles seeds an LCG per hit).
+  WalkSample sample_walk(Vec3 wo, Point2 u) const;
 
   const MultiscatterSetup& setup() const { return setup_; }
 
@@ -143,6 +161,7 @@ class MultiscatterGGXGlass {
 
   RGB walk_f(Vec3 wo, Vec3 wi, PCG32& rng) const;
   RGB walk_sample(Vec3 wo, PCG32& rng, Vec3* wi) const;
+  WalkSample sample_walk(Vec3 wo, Point2 u) const;  // as the reflection's
 
   const MultiscatterSetup& setup() const { return setup_; }
 

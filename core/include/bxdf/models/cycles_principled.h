@@ -32,7 +32,9 @@
 //
 // Sampling picks a closure in proportion to Cycles' sample weights (|average(weight)|, times
 // the Fresnel colour at the normal for the Fresnel closures and the sheen's average) and
-// samples it; pdf is the mixture's density, so sample_f, f and pdf agree.
+// samples it; pdf is the mixture's density, so sample_f, f and pdf agree, except that a
+// multiscatter closure is sampled as Cycles does, with its walk (sample_f_is_exact is then
+// false; sample_exact samples the mixture's density).
 // Not reciprocal when there is transmission: the glass weights depend on F(cos θo).
 #pragma once
 
@@ -91,7 +93,11 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
     else
       fn(*this);
   }
-  BxDFSample sample(Vec3 wo, Point2 u) const;
+  // Cycles' sample: a multiscatter closure is sampled with its walk (cycles_multiscatter.h);
+  // sample_exact samples density() for exact importance sampling of f.
+  BxDFSample sample(Vec3 wo, Point2 u) const { return sample_closures(wo, u, true); }
+  BxDFSample sample_exact(Vec3 wo, Point2 u) const { return sample_closures(wo, u, false); }
+  bool sample_f_is_exact() const override { return !(s_.specular_multi || s_.glass_multi); }
   float density(Vec3 wo, Vec3 wi) const;
 
   // The diffuse and sheen lobes (Cycles' PRINCIPLED_DIFFUSE and PRINCIPLED_SHEEN closures).
@@ -120,7 +126,15 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
  private:
   RGB eval_general(Vec3 wo, Vec3 wi) const;  // any distribution, closure by closure
   // For wo in the upper hemisphere; back_face says which side it really is on.
-  RGB eval_upper(const Vec3& wo, const Vec3& wi, const Closures& c, bool back_face) const;
+  // `skip`: a closure left out of the sum (the one a walk sampled), or -1.
+  RGB eval_upper(const Vec3& wo, const Vec3& wi, const Closures& c, bool back_face,
+                 int skip = -1) const;
+  BxDFSample sample_closures(Vec3 wo, Point2 u, bool walk) const;
+  // Closure k is a multiscatter closure, which Cycles samples with its walk.
+  bool walks(int k) const {
+    return (k == kSpecularClosure && s_.specular_multi) ||
+           (k == kGlassReflectionClosure && s_.glass_multi);
+  }
   float density_upper(const Vec3& wo, const Vec3& wi, const Closures& c, bool back_face) const;
   // Lobe values of closure k without the closure weight.
   RGB lobe_f(int k, const Vec3& wo, const Vec3& wi, float eta, bool back_face) const;
