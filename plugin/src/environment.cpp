@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "bxdf/params.h"
 #include "bxdf/render/image_io.h"
@@ -155,16 +158,20 @@ void Environment::build_distribution() {
   // each cell's centre; a cell here takes the largest of its nine points instead, so that the
   // bilinear footprint of a bright texel (a sun) never lies in a cell the map thinks dark —
   // that would leave BSDF sampling alone to find it, as fireflies.
+  // Rows in parallel (a 4K image's Automatic map is 33 M lookups); every row is written by one
+  // task and the integral summed in row order afterwards, so the map is the same bits at any
+  // thread count.
   const int gw = 2 * map_w_ + 1, gh = 2 * map_h_ + 1;
   std::vector<float> grid(size_t(gw) * gh);
-  for (int j = 0; j < gh; ++j)
+  tbb::parallel_for(0, gh, [&](int j) {
     for (int i = 0; i < gw; ++i)
       grid[size_t(j) * gw + i] =
           eval(equirect_to_direction(float(i) / (2 * map_w_), float(j) / (2 * map_h_))).average();
+  });
   std::vector<float> cond(size_t(cw) * map_h_ * 2);
   marginal_.assign(size_t(map_h_ + 1) * 2, 0.0f);
-  double integral = 0.0;
-  for (int y = 0; y < map_h_; ++y) {
+  std::vector<double> row_integral(map_h_);
+  tbb::parallel_for(0, map_h_, [&](int y) {
     float* row = &cond[size_t(y) * cw * 2];
     const float v = (y + 0.5f) / map_h_;
     double centres = 0.0;
@@ -178,8 +185,10 @@ void Environment::build_distribution() {
     build_cdf(row, map_w_);
     const float sin_theta = std::sin(kPi * v);
     marginal_[2 * y] = row[2 * map_w_] * sin_theta;
-    integral += centres / map_w_ * sin_theta;
-  }
+    row_integral[y] = centres / map_w_ * sin_theta;
+  });
+  double integral = 0.0;
+  for (const double r : row_integral) integral += r;
   const float total = build_cdf(marginal_.data(), map_h_);
   integral_ = static_cast<float>(integral / map_h_ * 2.0 * kPi * kPi);
   if (!s_.importance_sample || !(total > 0.0f)) {

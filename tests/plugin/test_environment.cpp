@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+
+#include <tbb/task_arena.h>
 
 #include "bxdf/registry.h"
 #include "bxdf/render/renderer.h"
@@ -169,6 +172,30 @@ TEST(Environment, MapResolutionFollowsCyclesRules) {
   EXPECT_FALSE(Environment(constant).importance_sampled());  // Cycles: no MIS for a constant world
   s.map_resolution = 3;
   EXPECT_THROW(Environment{s}, ParameterError);
+}
+
+// The map is built in parallel: at one thread and at two it is the same bits (same samples,
+// same densities, same power).
+TEST(Environment, MapIsTheSameAtAnyThreadCount) {
+  EnvironmentSettings s = rotated_blobs();
+  s.map_resolution = 0;  // Automatic: the image's 64 × 32
+  const auto build = [&](int threads) {
+    tbb::task_arena arena(threads);
+    std::unique_ptr<Environment> env;
+    arena.execute([&] { env = std::make_unique<Environment>(s); });
+    return env;
+  };
+  const auto one = build(1), two = build(2);
+  ASSERT_TRUE(one->importance_sampled());
+  EXPECT_EQ(one->power(1.0f), two->power(1.0f));
+  PCG32 rng(17);
+  for (int i = 0; i < 2000; ++i) {
+    const Point2 u(rng.uniform(), rng.uniform());
+    float pdf_one = 0.0f, pdf_two = 0.0f;
+    const Vec3 a = one->sample(u, &pdf_one), b = two->sample(u, &pdf_two);
+    ASSERT_TRUE(a == b && pdf_one == pdf_two) << i;
+    ASSERT_EQ(one->pdf(a), two->pdf(a)) << i;
+  }
 }
 
 TEST(Environment, RotatedImageIsTheImageSeenAlongTheRotatedDirection) {
