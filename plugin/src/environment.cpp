@@ -1,7 +1,13 @@
 #include "bxdf/render/environment.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -71,7 +77,74 @@ Point2 direction_to_mirrorball(const Vec3& dir) {
   return Point2(0.5f * (d.x + 1.0f), 0.5f * (d.z + 1.0f));
 }
 
+namespace {
+
+// What identifies a file's contents without reading it.
+struct FileStamp {
+  dev_t device = 0;
+  ino_t inode = 0;
+  off_t size = 0;
+  int64_t modified_ns = 0, changed_ns = 0;
+  bool operator==(const FileStamp& o) const {
+    return device == o.device && inode == o.inode && size == o.size &&
+           modified_ns == o.modified_ns && changed_ns == o.changed_ns;
+  }
+};
+
+bool stamp_of(const std::string& path, FileStamp* stamp) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) return false;
+  stamp->device = st.st_dev;
+  stamp->inode = st.st_ino;
+  stamp->size = st.st_size;
+  stamp->modified_ns = int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
+  stamp->changed_ns = int64_t(st.st_ctim.tv_sec) * 1000000000 + st.st_ctim.tv_nsec;
+  return true;
+}
+
+// The last images read, most recent first.
+struct CachedEquirect {
+  std::string path;
+  FileStamp stamp;
+  std::shared_ptr<const EquirectImage> image;
+};
+std::mutex equirect_cache_mutex;
+std::deque<CachedEquirect> equirect_cache;
+
+EquirectImage read_equirect_image(const std::string& path);
+
+}  // namespace
+
 EquirectImage load_equirect_image(const std::string& path) {
+  FileStamp stamp;
+  const bool stamped = stamp_of(path, &stamp);
+  if (stamped) {
+    std::lock_guard<std::mutex> lock(equirect_cache_mutex);
+    for (auto it = equirect_cache.begin(); it != equirect_cache.end(); ++it) {
+      if (it->path != path || !(it->stamp == stamp)) continue;
+      CachedEquirect hit = *it;
+      equirect_cache.erase(it);
+      equirect_cache.push_front(hit);
+      return *hit.image;
+    }
+  }
+  auto image = std::make_shared<const EquirectImage>(read_equirect_image(path));
+  // Kept only if the file did not change while it was read.
+  FileStamp after;
+  if (stamped && stamp_of(path, &after) && after == stamp) {
+    std::lock_guard<std::mutex> lock(equirect_cache_mutex);
+    equirect_cache.erase(std::remove_if(equirect_cache.begin(), equirect_cache.end(),
+                                        [&](const CachedEquirect& c) { return c.path == path; }),
+                         equirect_cache.end());
+    equirect_cache.push_front({path, stamp, image});
+    if (equirect_cache.size() > size_t(kEquirectCacheEntries)) equirect_cache.pop_back();
+  }
+  return *image;
+}
+
+namespace {
+
+EquirectImage read_equirect_image(const std::string& path) {
   const Image rgba = read_image(path);  // top row first
   EquirectImage img;
   img.width = rgba.width;
@@ -88,6 +161,8 @@ EquirectImage load_equirect_image(const std::string& path) {
   }
   return img;
 }
+
+}  // namespace
 
 Environment::Environment(EnvironmentSettings settings) : s_(std::move(settings)) {
   require_colour("color", s_.constant);

@@ -4,8 +4,14 @@
 // furnace, which BSDF sampling alone renders without noise.
 #include <gtest/gtest.h>
 
+#include "../scratch_folder.h"
+
+#include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <memory>
+#include <thread>
 
 #include <tbb/task_arena.h>
 
@@ -196,6 +202,29 @@ TEST(Environment, MapIsTheSameAtAnyThreadCount) {
     ASSERT_TRUE(a == b && pdf_one == pdf_two) << i;
     ASSERT_EQ(one->pdf(a), two->pdf(a)) << i;
   }
+}
+
+// load_equirect_image keeps the images it read: an unchanged file comes back equal (from the
+// cache), a rewritten one (same name, same size, other pixels) is read again, and a file that
+// is gone is an error, not a cached image.
+TEST(Environment, ReloadedImageIsTheFilesCurrentContents) {
+  const std::string path = bxdf::test_support::process_temp_path("equirect_cache.pfm");
+  const auto write = [&](float value) {
+    std::ofstream f(path, std::ios::binary | std::ios::trunc);
+    f << "PF\n2 1\n-1.0\n";
+    for (int i = 0; i < 6; ++i) f.write(reinterpret_cast<const char*>(&value), sizeof value);
+  };
+  write(0.25f);
+  const EquirectImage first = load_equirect_image(path);
+  ASSERT_EQ(first.width, 2);
+  EXPECT_EQ(first.rgb[0], 0.25f);
+  EXPECT_EQ(load_equirect_image(path).rgb, first.rgb);
+  // File times tick at the kernel's clock granularity (a few ms): wait past it.
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  write(0.75f);
+  EXPECT_EQ(load_equirect_image(path).rgb[5], 0.75f);
+  std::filesystem::remove(path);
+  EXPECT_THROW(load_equirect_image(path), std::runtime_error);
 }
 
 TEST(Environment, RotatedImageIsTheImageSeenAlongTheRotatedDirection) {

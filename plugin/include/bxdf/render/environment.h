@@ -32,7 +32,11 @@ struct EquirectImage {
 };
 
 // Reads an image file through OpenImageIO (EXR/HDR linear; 8-bit formats decoded from sRGB).
-// Throws std::runtime_error naming the path on failure.
+// Throws std::runtime_error naming the path on failure. A file read again unchanged (the same
+// device, inode, size, modification and change times) is copied from a process-wide cache of
+// the last kEquirectCacheEntries images instead: a render in Blender reads its world's HDRI at
+// every render (a 1024 × 512 EXR: ~20 ms of a 64-sample preview's ~170 ms).
+constexpr int kEquirectCacheEntries = 4;
 EquirectImage load_equirect_image(const std::string& path);
 
 struct EnvironmentSettings {
