@@ -406,32 +406,33 @@ BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool walk) const
     }
     s.f = weight / (pick * std::fabs(wi.z));
     s.pdf = 1.0f;
-  } else if (walk && walks(k)) {
-    // Cycles' sample of a multiscatter closure: its walk's exit, eval = weight × walk
-    // throughput × its approximate pdf, plus the other closures' eval there (shader_bsdf_
-    // sample_closure with _shader_bsdf_multi_eval), over the mixture's pdf.
-    const bool specular = k == kSpecularClosure;
-    const microfacet::WalkSample w =
-        specular ? s_.specular_ms.sample_walk(to_tangent(wo), v)
-                 : (back ? s_.glass_ms_back : s_.glass_ms).sample_walk(wo, v);
-    if (!w.ok) return s;
-    wi = specular ? from_tangent(w.wi) : w.wi;
-    if (back) wi.z = -wi.z;
-    if (!microfacet::snap_to_unit(wi)) return s;
-    if (back) wi.z = -wi.z;
-    if (wi.z == 0.0f) return s;
-    s.pdf = density_upper(wo, wi, c, back);
-    const float own_pdf = lobe_density(k, wo, wi, c.eta, back);
-    s.f = c.weight[k] * w.weight * (own_pdf / std::fabs(wi.z)) + eval_upper(wo, wi, c, back, k);
-    s.flags = (wi.z > 0.0f ? kReflection : kTransmission) | kGlossy;
   } else {
-    if (!lobe_sample(k, wo, v, c.eta, back, &wi)) return s;
+    // A multiscatter closure is sampled as Cycles does, with its walk: its eval is weight ×
+    // walk throughput × its approximate pdf, plus the other closures' eval there
+    // (shader_bsdf_sample_closure with _shader_bsdf_multi_eval), over the mixture's pdf.
+    const bool by_walk = walk && walks(k);
+    microfacet::WalkSample w;
+    if (by_walk) {
+      const bool specular = k == kSpecularClosure;
+      w = specular ? s_.specular_ms.sample_walk(to_tangent(wo), v)
+                   : (back ? s_.glass_ms_back : s_.glass_ms).sample_walk(wo, v);
+      if (!w.ok) return s;
+      wi = specular ? from_tangent(w.wi) : w.wi;
+    } else if (!lobe_sample(k, wo, v, c.eta, back, &wi)) {
+      return s;
+    }
     // f of the multiple-scattering lobes hashes the directions: use the bits f() will see.
     if (back) wi.z = -wi.z;
     if (!microfacet::snap_to_unit(wi)) return s;
     if (back) wi.z = -wi.z;
     s.pdf = density_upper(wo, wi, c, back);
-    s.f = back ? eval(Vec3(wo.x, wo.y, -wo.z), Vec3(wi.x, wi.y, -wi.z)) : eval(wo, wi);
+    if (by_walk) {
+      if (wi.z == 0.0f) return BxDFSample();
+      const float own_pdf = lobe_density(k, wo, wi, c.eta, back);
+      s.f = c.weight[k] * w.weight * (own_pdf / std::fabs(wi.z)) + eval_upper(wo, wi, c, back, k);
+    } else {
+      s.f = back ? eval(Vec3(wo.x, wo.y, -wo.z), Vec3(wi.x, wi.y, -wi.z)) : eval(wo, wi);
+    }
     s.flags = (wi.z > 0.0f ? kReflection : kTransmission) |
               (k == kDiffuseClosure || k == kSheenClosure ? kDiffuse : kGlossy);
   }
