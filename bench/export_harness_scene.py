@@ -5,7 +5,8 @@
 
 Builds the scene as bench/side_by_side.py does (materials set up by the add-on for both engines),
 renders it once with BXDF_LAB at 1 sample and keeps the scene data and settings the add-on passed
-to bxdf.render (its export, node programs and all). bench/render_exported.py then renders that
+to bxdf.render (its export, node programs and all); generated world images go to a folder beside
+the pickle (OUT without its extension, plus "-world"). bench/render_exported.py then renders that
 file with /usr/bin/python3 alone, where `perf` and `valgrind --tool=callgrind` see only the
 renderer: the harness scene's own instruction count, steady from run to run, unlike its time.
 """
@@ -32,7 +33,10 @@ def main():
         sys.path.insert(0, HERE)
     import side_by_side
 
-    spec, _ = side_by_side.set_up_scene(args.scene, None)  # enables the add-on
+    # Generated world images (the scene data names them) are kept beside the pickle.
+    world_dir = os.path.splitext(os.path.abspath(args.out))[0] + "-world"
+    os.makedirs(world_dir, exist_ok=True)
+    spec, _ = side_by_side.set_up_scene(args.scene, None, world_dir)  # enables the add-on
     from bxdf_lab import renderer
 
     captured = {}
@@ -44,8 +48,9 @@ def main():
 
     renderer.render = capture
     try:
-        image = os.path.join(tempfile.mkdtemp(prefix="bxdf-export-"), "one.exr")
-        side_by_side.render("BXDF_LAB", spec, 1, 1, 2, image)
+        work = tempfile.mkdtemp(prefix="bxdf-export-")
+        side_by_side.render("BXDF_LAB", spec, 1, 1, 2, os.path.join(work, "one.exr"))
+        os.rmdir(work)  # render() removes the image it read
     finally:
         renderer.render = original
     if "scene" not in captured:

@@ -16,8 +16,10 @@ the same ratios on the process's CPU time (steadier than wall time on a shared m
 `--json FILE` also writes every number.
 """
 import argparse
+import atexit
 import json
 import os
+import shutil
 import statistics
 import sys
 import tempfile
@@ -49,8 +51,9 @@ def parse_args():
     return args
 
 
-def set_up_scene(scene_name, resolution):
-    """Builds the harness scene once, with every material set up for both engines."""
+def set_up_scene(scene_name, resolution, world_dir=None):
+    """Builds the harness scene once, with every material set up for both engines. Generated world
+    images go to `world_dir`, or to a temporary folder removed when the process ends."""
     from dataclasses import replace
 
     use_module_paths()
@@ -59,10 +62,10 @@ def set_up_scene(scene_name, resolution):
     spec = scenes.get(scene_name)
     if resolution:
         spec = replace(spec, resolution=tuple(resolution))
-    return set_up_spec(spec)
+    return set_up_spec(spec, world_dir)
 
 
-def set_up_spec(spec):
+def set_up_spec(spec, world_dir=None):
     """Builds a scene spec (compare/scenes.py) in Blender, every material set up for both engines."""
     use_module_paths()
     import bpy
@@ -73,7 +76,9 @@ def set_up_spec(spec):
     bpy_build.clear_scene()
     materials = {m.name: bpy.data.materials.new(m.name) for m in spec.materials()}
     # Generated world images (a z-gradient world) go to a folder of their own.
-    world_dir = tempfile.mkdtemp(prefix="bxdf-side-by-side-world-")
+    if world_dir is None:
+        world_dir = tempfile.mkdtemp(prefix="bxdf-side-by-side-world-")
+        atexit.register(shutil.rmtree, world_dir, True)  # read until the last render
     objects = bpy_build.build(spec, materials, world_dir)
     engine_setup.common_settings(spec)
     labels = {}

@@ -68,14 +68,15 @@ PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
 
 RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf,
                                  const Vec3& wo, const Vec3& viewer_n,
-                                 const std::array<float, 3>& u, int transparent_bounces,
+                                 Point2 u, int transparent_bounces,
                                  PathStats& stats, PendingShadow* deferred) const {
   const LightSampler& sampler = scene_.light_sampler();
   if (sampler.empty()) return RGB(0.0f);
   const auto& lights = scene_.lights();
   float select = 0.0f;
-  const size_t index = sampler.sample(u[0], &select);
-  const float u1 = u[1], u2 = u[2];
+  float u1 = 0.0f;
+  const size_t index = sampler.sample(u.x, &select, &u1);
+  const float u2 = u.y;
   const Light* light = index < lights.size() ? &lights[index] : nullptr;
   // Made in place (initialised by the call, not assigned from a temporary): copying the
   // returned sample read it back in 16-byte pieces over the callee's 4-byte stores, a

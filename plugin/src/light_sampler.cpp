@@ -29,10 +29,15 @@ LightSampler::LightSampler(const std::vector<Light>& lights, const Environment* 
   cdf_.back() = 1.0f;
 }
 
-size_t LightSampler::sample(float u, float* probability) const {
+size_t LightSampler::sample(float u, float* probability, float* remapped) const {
   size_t i = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
   i = std::min(i, pmf_.size() - 1);
   *probability = pmf_[i];
+  if (remapped) {
+    // A picked light has pmf > 0 (upper_bound passes over empty intervals).
+    const float lo = i == 0 ? 0.0f : cdf_[i - 1];
+    *remapped = std::min(std::max((u - lo) / pmf_[i], 0.0f), 0x1.fffffep-1f);
+  }
   return i;
 }
 

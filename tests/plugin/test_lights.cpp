@@ -5,6 +5,7 @@
 // visibility, cast_shadow and the terminator offset.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "bxdf/registry.h"
@@ -156,6 +157,41 @@ TEST(Lights, SamplerPicksByPower) {
   for (int i = 0; i < 101000; ++i) ++counts[sampler.sample((i + 0.5f) / 101000.0f, &p)];
   EXPECT_NEAR(counts[1], 1000, 2);
   EXPECT_EQ(counts[2], 0);
+}
+
+TEST(Lights, SamplerRemapsTheNumberWithinThePickedLight) {
+  // The number that picks a light is, rescaled to the light's interval, uniform again: the
+  // stratified numbers landing on a light stay stratified over [0, 1).
+  std::vector<Light> lights = {point_light_from_power(Vec3(0, 0, 1), 30.0f, RGB(1.0f)),
+                               point_light_from_power(Vec3(0, 0, 1), 0.0f, RGB(1.0f)),
+                               point_light_from_power(Vec3(0, 0, 1), 70.0f, RGB(1.0f))};
+  const LightSampler sampler(lights, nullptr, 1.0f);
+  const int n = 100000;
+  std::vector<float> remapped[3];
+  for (int i = 0; i < n; ++i) {
+    const float u = (i + 0.5f) / n;
+    float p = 0.0f, r = -1.0f;
+    const size_t k = sampler.sample(u, &p, &r);
+    ASSERT_GE(r, 0.0f) << u;
+    ASSERT_LT(r, 1.0f) << u;
+    EXPECT_EQ(p, sampler.probability(k));
+    remapped[k].push_back(r);
+  }
+  EXPECT_TRUE(remapped[1].empty());
+  for (size_t k : {size_t(0), size_t(2)}) {
+    const std::vector<float>& r = remapped[k];
+    ASSERT_FALSE(r.empty());
+    // In order, evenly spread from 0 to 1 (the picked numbers are evenly spaced).
+    EXPECT_TRUE(std::is_sorted(r.begin(), r.end())) << k;
+    EXPECT_LT(r.front(), 2.0f / float(r.size())) << k;
+    EXPECT_GT(r.back(), 1.0f - 2.0f / float(r.size())) << k;
+    for (size_t j = 1; j < r.size(); ++j)
+      ASSERT_NEAR(r[j] - r[j - 1], 1.0f / float(r.size()), 1e-3f) << k << " " << j;
+  }
+  // u = 1 - ulp lands in the last light, still below 1 once remapped.
+  float p = 0.0f, r = 0.0f;
+  EXPECT_EQ(sampler.sample(0x1.fffffep-1f, &p, &r), 2u);
+  EXPECT_LT(r, 1.0f);
 }
 
 namespace {

@@ -28,10 +28,11 @@ class PathSampler {
   }
 
   Point2 filter() const { return point2(set(kFilter, 0)); }
-  // (light choice, light point u, light point v) at a path vertex.
-  std::array<float, 3> light(int bounce) const {
-    return sobol::sample_reversed<3>(reversed_index_, set(kLight, bounce));
-  }
+  // The light sample at a path vertex: x picks the light and, remapped, is the light point's
+  // first coordinate, y its second (Cycles' PRNG_LIGHT). Sobol dimensions 0 and 1 are the only
+  // pair that is a (0, m, 2)-net; dimensions 1 and 2, which a third number for the choice
+  // would leave the point, are not.
+  Point2 light(int bounce) const { return point2(set(kLight, bounce)); }
   Point2 bsdf(int bounce) const { return point2(set(kBsdf, bounce)); }
   float russian_roulette(int bounce) const {
     return sobol::sample_reversed<1>(reversed_index_, set(kRussianRoulette, bounce))[0];

@@ -140,9 +140,10 @@ class PathTracer {
   void test_shadow(PathState& s) const;
   // `viewer_n`: viewer_side_normal of the hit (PreparedHit::viewer_n, computed once by prepare).
   // With `deferred`, a plain-occlusion shadow ray is not tested but left in *deferred (active),
-  // and the radiance returned is what an unblocked ray gives.
+  // and the radiance returned is what an unblocked ray gives. `u` (PathSampler::light): u.x
+  // picks the light and, remapped within its interval, is the light point's first coordinate.
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
-                       const Vec3& viewer_n, const std::array<float, 3>& u,
+                       const Vec3& viewer_n, Point2 u,
                        int transparent_bounces, PathStats& stats,
                        PendingShadow* deferred = nullptr) const;
   // A direction towards the world (light sampler entry lights().size()), drawn from (u1, u2).

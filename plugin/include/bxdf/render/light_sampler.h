@@ -19,8 +19,11 @@ class LightSampler {
 
   bool empty() const { return pmf_.empty(); }
   size_t size() const { return pmf_.size(); }
-  // The chosen index (lights.size() = the world) and its probability.
-  size_t sample(float u, float* probability) const;
+  // The chosen index (lights.size() = the world) and its probability. `remapped` (optional):
+  // u's place within the chosen light's interval, again uniform in [0, 1), so that one number
+  // both picks the light and (Cycles' light_distribution_sample) stays a coordinate of the
+  // light point, keeping that point's 2D stratification.
+  size_t sample(float u, float* probability, float* remapped = nullptr) const;
   float probability(size_t index) const { return index < pmf_.size() ? pmf_[index] : 0.0f; }
 
  private:
