@@ -29,10 +29,13 @@ void require_colour(const char* name, const RGB& c) {
 
 // Cycles' lower_bound over the CDF column of a (value, cdf) pair array with `count` cells.
 int find_interval(const float* pairs, int count, float u) {
+  // The cell i with cdf_i <= u < cdf_(i+1) (upper bound, not Cycles' lower bound): a cell of
+  // value zero has cdf_i = cdf_(i+1) and is never picked, not even by u = 0 — MIS compensation
+  // leaves whole runs of such cells.
   int first = 0, n = count;
   while (n > 0) {
     const int step = n >> 1, middle = first + step;
-    if (pairs[2 * middle + 1] < u) {
+    if (!(u < pairs[2 * middle + 1])) {
       first = middle + 1;
       n -= step + 1;
     } else {
@@ -51,7 +54,11 @@ float build_cdf(float* pairs, int count) {
   pairs[2 * count] = total;
   if (total > 0.0f)
     for (int i = 1; i < count; ++i) pairs[2 * i + 1] /= total;
-  pairs[2 * count + 1] = 1.0f;
+  // Past the last cell of nonzero value the CDF is exactly 1, where rounding would leave those
+  // zero cells a sliver below it (and u in it a sample of density 0).
+  int last = count;
+  while (last > 0 && !(pairs[2 * (last - 1)] > 0.0f)) --last;
+  for (int i = last; i <= count; ++i) pairs[2 * i + 1] = 1.0f;
   return total;
 }
 
@@ -245,22 +252,39 @@ void Environment::build_distribution() {
   });
   std::vector<float> cond(size_t(cw) * map_h_ * 2);
   marginal_.assign(size_t(map_h_ + 1) * 2, 0.0f);
-  std::vector<double> row_integral(map_h_);
+  std::vector<double> row_integral(map_h_), row_cells(map_h_);
+  const auto row_sin_theta = [this](int y) { return std::sin(kPi * (y + 0.5f) / map_h_); };
   tbb::parallel_for(0, map_h_, [&](int y) {
     float* row = &cond[size_t(y) * cw * 2];
-    const float v = (y + 0.5f) / map_h_;
-    double centres = 0.0;
+    double centres = 0.0, cells = 0.0;
     for (int x = 0; x < map_w_; ++x) {
       float m = 0.0f;
       for (int j = 2 * y; j <= 2 * y + 2; ++j)
         for (int i = 2 * x; i <= 2 * x + 2; ++i) m = std::max(m, grid[size_t(j) * gw + i]);
       row[2 * x] = m;
+      cells += m;
       centres += grid[size_t(2 * y + 1) * gw + 2 * x + 1];
     }
+    row_integral[y] = centres / map_w_ * row_sin_theta(y);
+    row_cells[y] = cells / map_w_;
+  });
+  // MIS compensation (Karlík et al. 2019): the map samples only what lies above the world's mean
+  // (solid-angle weighted, summed in row order: the same bits at any thread count). BSDF
+  // sampling finds the rest well, and under MIS a smooth part shared by both techniques only
+  // adds variance: a diffuse sphere in a sky of 0.6 + 0.4 z had 20x the MSE of BSDF sampling
+  // alone. Unbiased, since every direction a BSDF reflects into can still be BSDF-sampled; a
+  // world with nothing above its mean is BSDF-sampled alone, as a constant one.
+  double weighted = 0.0, solid_angle = 0.0;
+  for (int y = 0; y < map_h_; ++y) {
+    weighted += row_cells[y] * row_sin_theta(y);
+    solid_angle += row_sin_theta(y);
+  }
+  const float mean = solid_angle > 0.0 ? static_cast<float>(weighted / solid_angle) : 0.0f;
+  tbb::parallel_for(0, map_h_, [&](int y) {
+    float* row = &cond[size_t(y) * cw * 2];
+    for (int x = 0; x < map_w_; ++x) row[2 * x] = std::max(row[2 * x] - mean, 0.0f);
     build_cdf(row, map_w_);
-    const float sin_theta = std::sin(kPi * v);
-    marginal_[2 * y] = row[2 * map_w_] * sin_theta;
-    row_integral[y] = centres / map_w_ * sin_theta;
+    marginal_[2 * y] = row[2 * map_w_] * row_sin_theta(y);
   });
   double integral = 0.0;
   for (const double r : row_integral) integral += r;

@@ -12,10 +12,12 @@
 #include <fstream>
 #include <memory>
 #include <thread>
+#include <vector>
 
 #include <tbb/task_arena.h>
 
 #include "bxdf/registry.h"
+#include "bxdf/sampling.h"
 #include "bxdf/render/renderer.h"
 #include "bxdf/render/shapes.h"
 #include "bxdf/rng.h"
@@ -94,8 +96,9 @@ TEST(Environment, SampledDirectionsFollowThePdfChi2OverTheSphere) {
   EXPECT_EQ(env.map_width(), 64);  // Auto: the image's own size
   EXPECT_EQ(env.map_height(), 32);
   // Bins on an area-preserving (φ, cos θ) grid that does not line up with the map's cells;
-  // expected counts integrate the pdf over each bin by a 12 × 12 midpoint rule.
-  const int nphi = 48, ncos = 40, sub = 12;
+  // expected counts integrate the pdf over each bin by a 32 × 32 midpoint rule (fine enough
+  // for a bin crossed by the edge of a cell of a sharply varying map).
+  const int nphi = 48, ncos = 40, sub = 32;
   const int64_t n = 400000;
   std::vector<double> observed(nphi * ncos, 0.0), expected(nphi * ncos, 0.0);
   PCG32 rng(5, 9);
@@ -143,24 +146,101 @@ TEST(Environment, SampledDirectionsFollowThePdfChi2OverTheSphere) {
   EXPECT_LT(chi2_z(stat, dof - 1), 4.0) << "chi2 " << stat << " dof " << dof;
 }
 
-TEST(Environment, PdfNeverFallsFarBelowTheRadiance) {
-  // MIS weights stay bounded only if the density follows the radiance: nowhere may L/∫L
-  // exceed the pdf by more than a small factor, however the image is rotated against the map.
-  // (Cells take the largest L of nine points, so a texel peak is seen at ≥ 0.56 of its value;
-  // the max-filtered map also integrates to more than ∫L, here by up to ~1.5×.)
+namespace {
+
+// The world's mean radiance (solid-angle weighted) and ∫ (average(L) − mean)⁺ dω, by uniform
+// directions.
+void radiance_mean_and_excess(const Environment& env, float* mean, float* excess) {
+  PCG32 rng(3, 4);
+  const int n = 400000;
+  std::vector<float> values(n);
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    values[size_t(i)] = env.eval(sample_uniform_sphere(Point2(rng.uniform(), rng.uniform()))).average();
+    sum += values[size_t(i)];
+  }
+  *mean = float(sum / n);
+  double above = 0.0;
+  for (float v : values) above += std::max(v - *mean, 0.0f);
+  *excess = float(above / n * 4.0 * M_PI);
+}
+
+}  // namespace
+
+TEST(Environment, PdfNeverFallsFarBelowTheRadianceAboveTheMean) {
+  // The map samples what lies above the world's mean (MIS compensation). MIS weights stay
+  // bounded only if the density follows that excess: nowhere well above the mean may
+  // (L − mean)/∫(L − mean)⁺ exceed the pdf by more than a small factor, however the image is
+  // rotated against the map. (Cells take the largest L of nine points, so a texel peak is seen
+  // at ≥ 0.56 of its value.)
   EnvironmentSettings s = rotated_blobs();
   s.weight = RGB(2.0f);
   s.constant = RGB(0.01f);
   const Environment env(s);
-  const float integral = env.power(1.0f) / kPi;  // ∫ average(L) dω
+  float mean = 0.0f, excess = 0.0f;
+  radiance_mean_and_excess(env, &mean, &excess);
   PCG32 rng(8, 8);
   float worst = 0.0f;
+  int above = 0;
   for (int i = 0; i < 200000; ++i) {
     const Vec3 d = equirect_to_direction(rng.uniform(), 0.02f + 0.96f * rng.uniform());
-    worst = std::max(worst, env.eval(d).average() / (env.pdf(d) * integral));
+    const float l = env.eval(d).average();
+    if (!(l > 2.0f * mean)) continue;
+    ++above;
+    worst = std::max(worst, (l - mean) / (env.pdf(d) * excess));
   }
+  ASSERT_GT(above, 1000);
   EXPECT_LT(worst, 4.0f);
   EXPECT_GT(worst, 0.5f);
+}
+
+TEST(Environment, MapLeavesWhatLiesBelowTheMeanToBsdfSampling) {
+  // Below the mean the density is zero: BSDF sampling alone finds those directions (their MIS
+  // weight is 1), which for a smooth sky is far less noisy than sharing them.
+  EnvironmentSettings s = rotated_blobs();
+  const Environment env(s);
+  float mean = 0.0f, excess = 0.0f;
+  radiance_mean_and_excess(env, &mean, &excess);
+  PCG32 rng(2, 6);
+  int below = 0, sampled_below = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const Vec3 d = sample_uniform_sphere(Point2(rng.uniform(), rng.uniform()));
+    if (!(env.eval(d).average() < 0.5f * mean)) continue;
+    ++below;
+    sampled_below += env.pdf(d) > 0.0f;
+  }
+  EXPECT_GT(below, 10000);
+  // Only the cells at a blob's rim, whose largest point is above the mean, keep a density.
+  EXPECT_LT(sampled_below, below / 20) << sampled_below << " of " << below;
+  // Samples never land there, nor anywhere of density zero (the CDFs end exactly at 1).
+  for (int i = 0; i < 100000; ++i) {
+    float pdf = 0.0f;
+    env.sample(Point2(rng.uniform(), rng.uniform()), &pdf);
+    ASSERT_GT(pdf, 0.0f);
+  }
+  for (const Point2 u : {Point2(0.0f, 0.0f), Point2(0x1.fffffep-1f, 0x1.fffffep-1f),
+                         Point2(0.0f, 0x1.fffffep-1f), Point2(0x1.fffffep-1f, 0.0f)}) {
+    float pdf = 0.0f;
+    env.sample(u, &pdf);
+    EXPECT_GT(pdf, 0.0f) << u.x << " " << u.y;
+  }
+  // A smooth sky of 0.6 + 0.4 z: its upper part, above the mean, keeps a density; the lower
+  // half has none.
+  EnvironmentSettings sky;
+  sky.image.width = 64;
+  sky.image.height = 32;
+  sky.image.rgb.resize(size_t(64) * 32 * 3);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x)
+      for (int k = 0; k < 3; ++k)
+        sky.image.rgb[(size_t(y) * 64 + x) * 3 + k] = 0.6f + 0.4f * equirect_to_direction(0.0f, (y + 0.5f) / 32).z;
+  sky.weight = RGB(1.0f);
+  const Environment gradient(sky);
+  ASSERT_TRUE(gradient.importance_sampled());
+  EXPECT_GT(gradient.pdf(normalize(Vec3(1, 0, 5))), 0.0f);
+  EXPECT_GT(gradient.pdf(normalize(Vec3(0, 1, 0.5f))), 0.0f);
+  EXPECT_EQ(gradient.pdf(normalize(Vec3(1, 0, -5))), 0.0f);
+  EXPECT_EQ(gradient.pdf(normalize(Vec3(1, 0, -0.2f))), 0.0f);
 }
 
 TEST(Environment, MapResolutionFollowsCyclesRules) {

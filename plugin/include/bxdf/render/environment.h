@@ -6,13 +6,17 @@
 //
 // with `image` an equirectangular (latitude-longitude) picture looked up as Cycles'
 // Environment Texture node does (K/svm/image.h, K/camera/projection.h). A world with an image
-// is importance-sampled as Cycles does (K/light/background.h, scene/light.cpp): a map of
+// is importance-sampled much as Cycles does (K/light/background.h, scene/light.cpp): a map of
 // res_x × res_y cells, a piecewise-constant 2D distribution over it with rows weighted by
-// sin θ, combined with BSDF sampling by MIS. (A cell's value is the largest L at nine points of
-// it rather than Cycles' centre value: the density then never falls far below L/∫L, which
-// keeps a small bright sun from turning into fireflies.) A constant world is not
-// light-sampled at all (Cycles turns background MIS off for a world that does not vary), so BSDF
-// sampling alone finds it, which is noise-free for a diffuse surface in a furnace.
+// sin θ, combined with BSDF sampling by MIS. Two things differ, neither changing the image's
+// expectation. A cell's value is the largest L at nine points of it rather than Cycles' centre
+// value: the density then never falls far below L/∫L, which keeps a small bright sun from
+// turning into fireflies. And the map holds only what lies above the world's mean radiance
+// (MIS compensation, Karlík et al. 2019): BSDF sampling alone finds the smooth rest, which
+// under MIS would only add variance (a diffuse sphere in a sky of 0.6 + 0.4 z: 27% less MSE
+// at 64 spp; under an HDRI 5-8% less). A constant world is not light-sampled at all (Cycles
+// turns background MIS off for a world that does not vary, and nothing lies above its mean),
+// so BSDF sampling alone finds it, which is noise-free for a diffuse surface in a furnace.
 #pragma once
 
 #include <string>
