@@ -27,11 +27,11 @@ void require_colour(const char* name, const RGB& c) {
                          ") must be in [0, inf) per channel");
 }
 
-// Cycles' lower_bound over the CDF column of a (value, cdf) pair array with `count` cells.
+// The cell i with cdf_i <= u < cdf_(i+1) of a (value, cdf) pair array with `count` cells: an
+// upper bound over the CDF column, not Cycles' lower bound, so that a cell of value zero
+// (cdf_i = cdf_(i+1)) is never picked, not even by u = 0 — MIS compensation leaves whole runs
+// of such cells.
 int find_interval(const float* pairs, int count, float u) {
-  // The cell i with cdf_i <= u < cdf_(i+1) (upper bound, not Cycles' lower bound): a cell of
-  // value zero has cdf_i = cdf_(i+1) and is never picked, not even by u = 0 — MIS compensation
-  // leaves whole runs of such cells.
   int first = 0, n = count;
   while (n > 0) {
     const int step = n >> 1, middle = first + step;
