@@ -1,5 +1,7 @@
 #include "bxdf/bsdf.h"
 
+#include "bxdf/cosine_above_plane.h"
+
 #include <string>
 
 namespace bxdf {
@@ -44,6 +46,19 @@ void BSDF::add(const BxDF* component, const RGB& weight, const Frame* frame, boo
                             : component->has_diffuse_closure_lobes() ? BumpShadowing::DiffuseLobes
                                                                    : BumpShadowing::None;
   ++count_;
+}
+
+void BSDF::set_sampling_horizon(const Vec3& true_geometric_normal) {
+  // A plane within float noise of the shading frame's clips nothing (flat shading keeps its
+  // plain cosine samples, bit for bit).
+  has_horizon_ = dot(true_geometric_normal, frame_.n) < 1.0f - 1e-7f;
+  horizon_ = true_geometric_normal;
+}
+
+float BSDF::component_pdf(int i, const Vec3& wo, const Vec3& wi) const {
+  Vec3 g;
+  if (clipped_lobe(i, wo, &g)) return cosine_above_plane_pdf(wi, g);
+  return components_[i]->pdf(wo, wi);
 }
 
 int BSDF::num_components(uint32_t mask) const {
@@ -125,7 +140,7 @@ void BSDF::f_f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask
     const Vec3 wo = frames_[i].to_local(wo_world);
     if (wo.z == 0.0f) continue;
     const Vec3 wi = frames_[i].to_local(wi_world);
-    if (sample_weights_[i] != 0.0f) pdf_sum += sample_weights_[i] * b.pdf(wo, wi);
+    if (sample_weights_[i] != 0.0f) pdf_sum += sample_weights_[i] * component_pdf(i, wo, wi);
     if (!scatters) continue;
     const RGB f = component_f(i, wo, wi, wi_world);
     f_total += weights_[i] * f;
@@ -154,7 +169,7 @@ float BSDF::pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask) const
     if (sample_weights_[i] == 0.0f) continue;
     const Vec3 wo = frames_[i].to_local(wo_world);
     if (wo.z == 0.0f) continue;
-    sum += sample_weights_[i] * b.pdf(wo, frames_[i].to_local(wi_world));
+    sum += sample_weights_[i] * component_pdf(i, wo, frames_[i].to_local(wi_world));
   }
   return total_weight > 0.0f ? sum / total_weight : 0.0f;
 }
@@ -190,7 +205,17 @@ BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
   const Frame& frame = frames_[picked];
   const Vec3 wo = frame.to_local(wo_world);
   if (wo.z == 0.0f) return out;
-  const BxDFSample s = b.sample_f(wo, u_remapped);
+  BxDFSample s;
+  Vec3 g;
+  if (clipped_lobe(picked, wo, &g)) {
+    // The cosine lobe above the triangle's plane; f is the model's own at that direction.
+    s.wi = sample_cosine_above_plane(u_remapped, g);
+    s.pdf = cosine_above_plane_pdf(s.wi, g);
+    s.f = b.f(wo, s.wi);
+    s.flags = kReflection | kDiffuse;
+  } else {
+    s = b.sample_f(wo, u_remapped);
+  }
   if (!s.valid()) return out;
 
   out.wi = frame.to_world(s.wi);

@@ -58,6 +58,13 @@ class BSDF {
   const BxDF* component(int i) const { return components_[i]; }
   const RGB& weight(int i) const { return weights_[i]; }
 
+  // The true geometric normal (unit, on the viewer's side) of an opaque smooth-shaded surface:
+  // its cosine-lobe components (BxDF::samples_cosine_lobe) then sample only directions above
+  // the triangle's plane, where a reflection can leave it, and report that density as their
+  // pdf (cosine_above_plane.h). Without it (or where the plane is the shading frame's)
+  // they sample their whole lobe, part of which may be lost below the plane.
+  void set_sampling_horizon(const Vec3& true_geometric_normal);
+
   const Frame& frame() const { return frame_; }
   const Vec3& geometric_normal() const { return ng_; }
   Vec3 to_local(const Vec3& v) const { return frame_.to_local(v); }
@@ -81,6 +88,17 @@ class BSDF {
  private:
   Frame frame_;
   Vec3 ng_{0, 0, 1};
+  Vec3 horizon_{0, 0, 0};  // set_sampling_horizon's normal; zero: none
+  bool has_horizon_ = false;
+  // Component i's local horizon normal when its cosine lobe is clipped at wo (local), else
+  // false: no horizon, another kind of model, wo below its frame, or the plane below it.
+  bool clipped_lobe(int i, const Vec3& wo, Vec3* g) const {
+    if (!has_horizon_ || !(wo.z > 0.0f) || !components_[i]->samples_cosine_lobe()) return false;
+    *g = frames_[i].to_local(horizon_);
+    return g->z > 0.0f;
+  }
+  // Component i's pdf, its clipped lobe's where it has one.
+  float component_pdf(int i, const Vec3& wo, const Vec3& wi) const;
   template <class Term>
   RGB weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, Term term) const;
   // Component i's f at local wo, wi, with Cycles' bump shadowing where it applies.

@@ -18,6 +18,7 @@ class Lambertian final : public BxDFImpl<Lambertian> {
     return sample_cosine_reflection(*this, wo, u);
   }
   float density(const Vec3& wo, const Vec3& wi) const { return cosine_reflection_pdf(wo, wi); }
+  bool samples_cosine_lobe() const override { return true; }
 
   RGB rho_hd(const Vec3&, int, uint64_t) const override { return r_; }
   RGB rho_hh(int, uint64_t) const override { return r_; }

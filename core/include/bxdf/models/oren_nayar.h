@@ -36,6 +36,7 @@ class OrenNayar final : public BxDFImpl<OrenNayar> {
     return sample_cosine_reflection(*this, wo, u);
   }
   float density(const Vec3& wo, const Vec3& wi) const { return cosine_reflection_pdf(wo, wi); }
+  bool samples_cosine_lobe() const override { return true; }
 
   float a() const { return a_; }
   float b() const { return b_; }
