@@ -405,7 +405,10 @@ TEST(Environment, DiffuseSphereUnderLinearSkyMatchesClosedForm) {
 
 TEST(Environment, ConstantFurnaceIsNoiseFreeAsCycles) {
   // Cycles does not light-sample a constant world: cosine-sampled BSDF rays find it with
-  // weight ρ exactly, so a white sphere is 1 in every pixel at any sample count.
+  // weight ρ, so a white sphere is 1 in every pixel at any sample count but where a sample is
+  // lost below a triangle's plane (0 in Cycles). Here the lobe is sampled above that plane
+  // (cosine_above_plane.h): a sample weighs ρ or ρ·cos δ, δ the angle between the shading
+  // and the triangle's normal (under 2.5° on this sphere), and is never lost.
   EnvironmentSettings world;
   world.constant = RGB(1.0f);
   SphereUnderSky s(world, 1.0f);
@@ -418,5 +421,5 @@ TEST(Environment, ConstantFurnaceIsNoiseFreeAsCycles) {
       film.pixel(x, y, px);
       worst = std::max(worst, std::fabs(px[0] - 1.0));
     }
-  EXPECT_LT(worst, 1e-4);
+  EXPECT_LT(worst, 1e-3);
 }
