@@ -88,7 +88,7 @@ class BSDF {
  private:
   Frame frame_;
   Vec3 ng_{0, 0, 1};
-  Vec3 horizon_{0, 0, 0};  // set_sampling_horizon's normal; zero: none
+  Vec3 horizon_{0, 0, 1};  // set_sampling_horizon's normal, read where has_horizon_
   bool has_horizon_ = false;
   // Component i's local horizon normal when its cosine lobe is clipped at wo (local), else
   // false: no horizon, another kind of model, wo below its frame, or the plane below it.

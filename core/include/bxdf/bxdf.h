@@ -79,10 +79,10 @@ class BxDF {
   // directions do not follow pdf. sample_f_exact is then the model's exact importance sampler
   // of f (f and pdf those of its direction, drawn from pdf); for every other model it is sample_f.
   virtual bool sample_f_is_exact() const { return true; }
+  virtual BxDFSample sample_f_exact(const Vec3& wo, Point2 u) const { return sample_f(wo, u); }
   // True for a model that samples the cosine lobe on wo's side (cosine_reflection.h): a BSDF
   // with a sampling horizon then draws it above the triangle's plane (cosine_above_plane.h).
   virtual bool samples_cosine_lobe() const { return false; }
-  virtual BxDFSample sample_f_exact(const Vec3& wo, Point2 u) const { return sample_f(wo, u); }
 
   // The part of f(wo, wi) that Cycles builds as diffuse closures (CLOSURE_IS_BSDF_DIFFUSE)
   // inside a model that also has other lobes: the Principled BSDF's diffuse and sheen. Cycles
