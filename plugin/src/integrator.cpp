@@ -322,8 +322,9 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   const Vec3& viewer_n = prepared->viewer_n;
   BSDF bsdf(prepared->frame, transmissive ? sp.ng : prepared->frame.n);
   // Cosine lobes sample only what can leave an opaque smooth surface: on a smooth sphere in a
-  // furnace the samples lost below the triangle's plane were all of the noise.
-  if (!transmissive) bsdf.set_sampling_horizon(dot(wo, sp.ng) < 0.0f ? -sp.ng : sp.ng);
+  // furnace the samples lost below the triangle's plane were all of the noise. (An opaque
+  // surface's sp.ng already faces the viewer: face_viewer.)
+  if (!transmissive) bsdf.set_sampling_horizon(sp.ng);
   RGB emitted = mat.emission;
   const bool scatters = prepared->scatters, may_pass = prepared->may_pass;
   if (mat.graph) {
