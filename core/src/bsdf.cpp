@@ -174,6 +174,37 @@ float BSDF::pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask) const
   return total_weight > 0.0f ? sum / total_weight : 0.0f;
 }
 
+RGB BSDF::f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, float* pdf_out) const {
+  const bool reflect = dot(wi_world, ng_) * dot(wo_world, ng_) > 0.0f;
+  RGB f_cos_total(0.0f);
+  float pdf_sum = 0.0f, total_weight = 0.0f;
+  for (int i = 0; i < count_; ++i) {
+    const BxDF& b = *components_[i];
+    total_weight += sample_weights_[i];
+    const bool scatters = agrees_with_geometry(b.flags(), reflect);
+    const bool weighs = sample_weights_[i] != 0.0f;
+    if (!scatters && !weighs) continue;
+    const Vec3 wo = frames_[i].to_local(wo_world);
+    if (wo.z == 0.0f) continue;
+    const Vec3 wi = frames_[i].to_local(wi_world);
+    Vec3 g;
+    RGB f;
+    float pdf;
+    if (clipped_lobe(i, wo, &g)) {  // component_pdf's clipped case
+      pdf = cosine_above_plane_pdf(wi, g);
+      f = scatters ? b.f(wo, wi) : RGB(0.0f);
+    } else if (scatters) {
+      f = b.f_pdf(wo, wi, &pdf);
+    } else {
+      pdf = b.pdf(wo, wi);
+    }
+    if (weighs) pdf_sum += sample_weights_[i] * pdf;
+    if (scatters) f_cos_total += weights_[i] * (bump_shadowed(i, f, wo, wi, wi_world) * abs_cos_theta(wi));
+  }
+  *pdf_out = total_weight > 0.0f ? pdf_sum / total_weight : 0.0f;
+  return f_cos_total;
+}
+
 BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
   BSDFSample out;
   float total_weight = 0.0f;

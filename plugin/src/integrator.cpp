@@ -99,7 +99,12 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
     }
   }
   if (!(ls.pdf > 0.0f) || ls.radiance.is_black()) return RGB(0.0f);
-  RGB f = bsdf.f_cos(wo, ls.wi);  // each closure's cosine against its own (mapped) normal
+  // Lights BSDF rays cannot find (delta, or Multiple Importance off) are counted in full; the
+  // others are weighed against the BSDF's pdf, evaluated with f in one pass.
+  const bool counted_fully = light && (light->is_delta() || !light->visibility.use_mis);
+  float bsdf_pdf = 0.0f;
+  // Each closure's cosine against its own (mapped) normal.
+  RGB f = counted_fully ? bsdf.f_cos(wo, ls.wi) : bsdf.f_cos_pdf(wo, ls.wi, &bsdf_pdf);
   if (f.is_black()) return RGB(0.0f);
   const TerminatorOffsets& terminator = scene_.terminator(hit.mesh);
   // The shading offset dims the viewer's side only: light through a transmissive surface is not
@@ -144,9 +149,7 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
   }
 
   const float light_pdf = ls.pdf * select;
-  // Lights BSDF rays cannot find (delta, or Multiple Importance off) are counted here in full.
-  if (light && (light->is_delta() || !light->visibility.use_mis)) return f * ls.radiance / light_pdf;
-  const float bsdf_pdf = bsdf.pdf(wo, ls.wi);
+  if (counted_fully) return f * ls.radiance / light_pdf;
   return f * ls.radiance * (power_heuristic(1.0f, light_pdf, 1.0f, bsdf_pdf) / light_pdf);
 }
 

@@ -252,3 +252,42 @@ TEST(BSDF, WorksWithRegistryModels) {
   const Vec3 wo = fr.n, wi = normalize(fr.n + fr.s);
   expect_rgb_near(bsdf.f(wo, wi), RGB(0.8f * kInvPi), 1e-6f);
 }
+
+// Light sampling asks for f·cos and the pdf of one pair together (BSDF::f_cos_pdf, through each
+// model's f_pdf): the same values as the separate calls, for every registry model, on both
+// sides of a tilted frame, with and without a sampling horizon.
+TEST(BSDF, FCosPdfEqualsFCosAndPdfForEveryModel) {
+  const Frame fr = tilted_frame();
+  const Vec3 ng = normalize(fr.n + fr.s * 0.2f);
+  PCG32 rng(0x5eed);
+  ParamSet layered;
+  layered.set("clearcoat", 0.5);
+  layered.set("transmission", 0.3);
+  layered.set("sheen", 0.4);
+  const BxDFPtr principled = make("cycles_principled", layered);
+  std::vector<BxDFPtr> models{principled};
+  for (const ModelInfo& info : bxdf::models()) models.push_back(make(info.name));
+  for (const BxDFPtr& m : models) {
+    for (bool horizon : {false, true}) {
+      BSDF bsdf(fr, ng);
+      if (horizon) bsdf.set_sampling_horizon(ng);
+      bsdf.add(m.get(), RGB(0.7f, 0.8f, 0.9f));
+      bsdf.add(principled.get(), RGB(0.3f));
+      for (int i = 0; i < 200; ++i) {
+        const Vec3 wo = sample_uniform_sphere(Point2(rng.uniform(), rng.uniform()));
+        const Vec3 wi = sample_uniform_sphere(Point2(rng.uniform(), rng.uniform()));
+        float pdf = -1.0f;
+        const RGB f_cos = bsdf.f_cos_pdf(wo, wi, &pdf);
+        const RGB expected = bsdf.f_cos(wo, wi);
+        EXPECT_EQ(f_cos.r, expected.r) << m->model_name() << " horizon " << horizon;
+        EXPECT_EQ(f_cos.g, expected.g) << m->model_name();
+        EXPECT_EQ(f_cos.b, expected.b) << m->model_name();
+        EXPECT_EQ(pdf, bsdf.pdf(wo, wi)) << m->model_name() << " horizon " << horizon;
+        float model_pdf = -1.0f;
+        const RGB model_f = m->f_pdf(wo, wi, &model_pdf);
+        EXPECT_EQ(model_pdf, m->pdf(wo, wi)) << m->model_name();
+        EXPECT_EQ(model_f.r, m->f(wo, wi).r) << m->model_name();
+      }
+    }
+  }
+}

@@ -79,6 +79,10 @@ class BSDF {
   // Pdf of sample_f's mixture: the matching components' pdfs weighted by their sample weights
   // (with unit weights, the average).
   float pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask = kAll) const;
+  // f_cos(wo, wi) and pdf(wo, wi) (every component) in one pass over the components, each
+  // evaluated once for both (BxDF::f_pdf): a light sample's pair. The same values as the two
+  // calls.
+  RGB f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, float* pdf_out) const;
   // Picks a matching component with u.x in proportion to its sample weight, remaps u.x to
   // [0, 1) and samples it. For a non-delta lobe f, f_cos and pdf are then those of the whole
   // mixture, so that f_cos/pdf is the estimator's weight; a delta lobe's f is its own times its

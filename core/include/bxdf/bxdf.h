@@ -72,6 +72,12 @@ class BxDF {
   virtual RGB f(const Vec3& wo, const Vec3& wi) const = 0;
   virtual BxDFSample sample_f(const Vec3& wo, Point2 u) const = 0;
   virtual float pdf(const Vec3& wo, const Vec3& wi) const = 0;
+  // f(wo, wi) with pdf(wo, wi) in *pdf_out, the same values in one call: light sampling needs
+  // both for each light point, and a model may share their work (the closures of a Principled).
+  virtual RGB f_pdf(const Vec3& wo, const Vec3& wi, float* pdf_out) const {
+    *pdf_out = pdf(wo, wi);
+    return f(wo, wi);
+  }
 
   // False for a model that samples as a Cycles closure does with its random walk (multiscatter
   // GGX): sample_f then draws wi from the walk and reports the walk's weight as f·|cos θi|/pdf,
@@ -157,6 +163,14 @@ struct has_sample_exact<
     T, std::void_t<decltype(std::declval<const T&>().sample_exact(Vec3(), Point2()))>>
     : std::true_type {};
 
+// A model whose eval and density share work gives both at once: eval_density(wo, wi, &pdf).
+template <class T, class = void>
+struct has_eval_density : std::false_type {};
+template <class T>
+struct has_eval_density<T, std::void_t<decltype(std::declval<const T&>().eval_density(
+                               Vec3(), Vec3(), static_cast<float*>(nullptr)))>>
+    : std::true_type {};
+
 template <class Derived>
 class BxDFImpl : public BxDF {
  public:
@@ -165,6 +179,23 @@ class BxDFImpl : public BxDF {
   RGB f(const Vec3& wo, const Vec3& wi) const final { return f_one(wo, wi); }
   BxDFSample sample_f(const Vec3& wo, Point2 u) const final { return sample_one(wo, u); }
   float pdf(const Vec3& wo, const Vec3& wi) const final { return pdf_one(wo, wi); }
+  // f_one and pdf_one with the directions normalised once.
+  RGB f_pdf(const Vec3& wo_in, const Vec3& wi_in, float* pdf_out) const final {
+    Vec3 wo = wo_in, wi = wi_in;
+    if (!normalize_direction(wo) || !normalize_direction(wi)) {
+      *pdf_out = 0.0f;
+      return RGB(0.0f);
+    }
+    if constexpr (has_eval_density<Derived>::value) {
+      float density = 0.0f;
+      const RGB f = derived().eval_density(wo, wi, &density);
+      *pdf_out = sanitize_nonnegative(density);
+      return sanitize_nonnegative(f);
+    } else {
+      *pdf_out = sanitize_nonnegative(derived().density(wo, wi));
+      return sanitize_nonnegative(derived().eval(wo, wi));
+    }
+  }
   BxDFSample sample_f_exact(const Vec3& wo_in, Point2 u) const final {
     if constexpr (has_sample_exact<Derived>::value) {
       Vec3 wo = wo_in;

@@ -367,6 +367,24 @@ float CyclesPrincipled::density(Vec3 wo, Vec3 wi) const {
   return density_upper(wo, wi, closures(wo, back), back);
 }
 
+RGB CyclesPrincipled::eval_density(Vec3 wo, Vec3 wi, float* density_out) const {
+  // Term for term what eval() and density() compute; the single-scatter kernel takes the
+  // directions as given (it turns them to the upper side itself).
+  const RGB kernel_f = s_.single_scatter ? s_.kernel.eval_one(wo, wi) : RGB(0.0f);
+  if (wo.z == 0.0f) {
+    *density_out = 0.0f;
+    return kernel_f;
+  }
+  const bool back = wo.z < 0.0f;
+  if (back) {
+    wo.z = -wo.z;
+    wi.z = -wi.z;
+  }
+  const Closures c = closures(wo, back);
+  *density_out = density_upper(wo, wi, c, back);
+  return s_.single_scatter ? kernel_f : eval_upper(wo, wi, c, back);
+}
+
 BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool walk) const {
   BxDFSample s;
   if (wo.z == 0.0f) return s;

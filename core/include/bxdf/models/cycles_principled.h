@@ -83,7 +83,7 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
       : CyclesPrincipled(make_state(inputs)) {}
 
   RGB eval(Vec3 wo, Vec3 wi) const {
-    return s_.single_scatter ? s_.kernel.eval(wo, wi) : eval_general(wo, wi);
+    return s_.single_scatter ? s_.kernel.eval_one(wo, wi) : eval_general(wo, wi);
   }
   // The batch loop runs the branch-free kernel when no closure scatters multiply.
   template <class Fn>
@@ -99,6 +99,8 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
   BxDFSample sample_exact(Vec3 wo, Point2 u) const { return sample_closures(wo, u, false); }
   bool sample_f_is_exact() const override { return !(s_.specular_multi || s_.glass_multi); }
   float density(Vec3 wo, Vec3 wi) const;
+  // eval and density with the closures built once (BxDF::f_pdf).
+  RGB eval_density(Vec3 wo, Vec3 wi, float* density_out) const;
 
   // The diffuse and sheen lobes (Cycles' PRINCIPLED_DIFFUSE and PRINCIPLED_SHEEN closures).
   bool has_diffuse_closure_lobes() const override { return s_.has_diffuse || s_.has_sheen; }

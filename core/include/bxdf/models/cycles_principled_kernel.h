@@ -71,7 +71,20 @@ struct PrincipledEvalKernel {
   float clearcoat = 0.0f, cc_alpha2 = 0.01f, cc_norm = 0.0f;
   InterpolatedFresnel cc_fresnel{1.5f, RGB(0.04f)};
 
-  BXDF_KERNEL RGB eval(Vec3 wo, Vec3 wi) const {
+  // Branch-free, for the batch loop.
+  BXDF_KERNEL RGB eval(Vec3 wo, Vec3 wi) const { return eval_closures<false>(wo, wi); }
+  // The same value for one pair, evaluating only the side wi is on and the closures that are
+  // built: the renderer's scalar f.
+  RGB eval_one(Vec3 wo, Vec3 wi) const { return eval_closures<true>(wo, wi); }
+
+ private:
+  // kSkip: leave out what the pair's side or an unbuilt closure makes zero (branches);
+  // otherwise compute every term and select (vectorisable). Either way a closure of weight 0
+  // adds exactly 0, even where its term is not finite (a near-zero cosine, or an IOR whose
+  // normal-incidence Fresnel is 1), and the terms computed are the same expressions: both
+  // give the same bits.
+  template <bool kSkip>
+  BXDF_KERNEL RGB eval_closures(Vec3 wo, Vec3 wi) const {
     // Back faces: mirror to the upper side, and the glass sees 1/ior.
     const bool back = wo.z < 0.0f;
     wo.z = back ? -wo.z : wo.z;
@@ -80,71 +93,16 @@ struct PrincipledEvalKernel {
     const float cos_o = wo.z, cos_i = wi.z;
     const bool reflected = cos_o > 0.0f && cos_i > 0.0f;
     const bool transmitted = cos_o > 0.0f && cos_i < 0.0f;
+    if (kSkip && !reflected && !transmitted) return RGB(0.0f);
 
-    // Shared by the reflection closures: the half vector and G1 terms' tan².
-    Vec3 h = wo + wi;
-    const float h_len2 = max_of(dot(h, h), 1e-30f);
-    h = h * (1.0f / std::sqrt(h_len2));
     const float tan2_o = tan2_of(cos_o), tan2_i = tan2_of(cos_i);
-    const float inv_4cc = 1.0f / (4.0f * cos_o * cos_i);
-    const float l_h = dot(wi, h);
-
-    // Diffuse (Burley with retro-reflection) and sheen.
-    const float fv = schlick5(cos_o), fl = schlick5(cos_i);
-    const float rr = roughness * (dot(wi, wo) + 1.0f);
-    const float diffuse = ((1.0f - 0.5f * fv) * (1.0f - 0.5f * fl) +
-                           rr * (fl + fv + fl * fv * (rr - 1.0f))) * kInvPi;
-    const float sheen = schlick5(l_h);
-    RGB sum = diffuse_weight * diffuse + sheen_weight * sheen;
-
-    // Specular, anisotropic GGX in the rotated tangent frame.
-    {
-      const float hx = rot_cos * h.x + rot_sin * h.y, hy = -rot_sin * h.x + rot_cos * h.y;
-      const float sx = hx / spec_ax, sy = hy / spec_ay;
-      const float s = h.z * h.z + sx * sx + sy * sy;
-      const float d = 1.0f / (kPi * spec_ax * spec_ay * s * s);
-      const auto alpha2_tan2 = [&](const Vec3& w) {
-        const float x = rot_cos * w.x + rot_sin * w.y, y = -rot_sin * w.x + rot_cos * w.y;
-        return (spec_ax * spec_ax * x * x + spec_ay * spec_ay * y * y) / (w.z * w.z);
-      };
-      const float g = ggx_g1(alpha2_tan2(wo)) * ggx_g1(alpha2_tan2(wi));
-      sum += spec_fresnel.at(l_h) * (specular_weight * d * g * inv_4cc);
-    }
-
     // Glass: reflection weighted by F(cos θo), refraction by base · max(1e-4, 1 − F); each
     // dropped below the closure cut-off.
     const float fresnel = fresnel_dielectric_select(cos_o, eta);
-    const float refl_w = final_transmission * fresnel * glass_reflection_on;
     const RGB refr_w = base * (final_transmission * max_of(1e-4f, 1.0f - fresnel) *
                                glass_refraction_on);
-    {
-      const float a2 = refl_alpha * refl_alpha;
-      const float c2 = h.z * h.z;
-      const float t = a2 * c2 + (1.0f - c2);
-      const float d = a2 / (kPi * t * t);
-      const float g = ggx_g1(a2 * tan2_o) * ggx_g1(a2 * tan2_i);
-      // Per-field selects (a select of references would stop the loop vectorising).
-      const float gf0 = back ? glass_fresnel_back.f0 : glass_fresnel_front.f0;
-      const float ginv = back ? glass_fresnel_back.inv_one_minus_f0
-                              : glass_fresnel_front.inv_one_minus_f0;
-      const float fh = (fresnel_dielectric_select(l_h, eta) - gf0) * ginv;
-      const RGB gf = glass_fresnel_front.cspec0 * (1.0f - fh) + RGB(fh);
-      const float w = refl_w >= kCutoff ? refl_w : 0.0f;
-      sum += gf * (w * d * g * inv_4cc);
-    }
-
-    // Clearcoat: GTR1 D, G1 with α² 0.0625, Fresnel of η 1.5, × 0.25.
-    {
-      const float c2 = h.z * h.z;
-      const float d = cc_norm / (1.0f + (cc_alpha2 - 1.0f) * c2);
-      const float g = ggx_g1(0.0625f * tan2_o) * ggx_g1(0.0625f * tan2_i);
-      const float fr = 0.04f + 0.96f * cc_fresnel.factor(l_h);
-      sum += RGB(clearcoat * 0.25f * fr * d * g * inv_4cc);
-    }
-
     // Refraction (wi below): ht = −(η wi + wo), no check of the facet's side.
-    RGB refraction;
-    {
+    const auto refraction = [&] {
       const Vec3 ht = -(wi * eta + wo);
       const float ht2 = max_of(dot(ht, ht), 1e-30f);
       const Vec3 m = ht * (1.0f / std::sqrt(ht2));
@@ -156,15 +114,80 @@ struct PrincipledEvalKernel {
       const float v = g * std::fabs(dot(m, wi) * dot(m, wo)) * d * eta * eta /
                       (cos_o * ht2 * -cos_i);
       const bool on = std::fabs(refr_w.average()) >= kCutoff;
-      refraction = refr_w * (on ? v : 0.0f);
+      return refr_w * (on ? v : 0.0f);
+    };
+    if (kSkip && transmitted) return refraction();
+
+    // Shared by the reflection closures: the half vector and G1 terms' tan².
+    Vec3 h = wo + wi;
+    const float h_len2 = max_of(dot(h, h), 1e-30f);
+    h = h * (1.0f / std::sqrt(h_len2));
+    const float inv_4cc = 1.0f / (4.0f * cos_o * cos_i);
+    const float l_h = dot(wi, h);
+
+    // Diffuse (Burley with retro-reflection) and sheen.
+    RGB sum(0.0f);
+    if (!kSkip || !diffuse_weight.is_black() || !sheen_weight.is_black()) {
+      const float fv = schlick5(cos_o), fl = schlick5(cos_i);
+      const float rr = roughness * (dot(wi, wo) + 1.0f);
+      const float diffuse = ((1.0f - 0.5f * fv) * (1.0f - 0.5f * fl) +
+                             rr * (fl + fv + fl * fv * (rr - 1.0f))) * kInvPi;
+      const float sheen = schlick5(l_h);
+      sum = diffuse_weight * diffuse + sheen_weight * sheen;
     }
+
+    // Specular, anisotropic GGX in the rotated tangent frame.
+    if (!kSkip || specular_weight != 0.0f) {
+      const float hx = rot_cos * h.x + rot_sin * h.y, hy = -rot_sin * h.x + rot_cos * h.y;
+      const float sx = hx / spec_ax, sy = hy / spec_ay;
+      const float s = h.z * h.z + sx * sx + sy * sy;
+      const float d = 1.0f / (kPi * spec_ax * spec_ay * s * s);
+      const auto alpha2_tan2 = [&](const Vec3& w) {
+        const float x = rot_cos * w.x + rot_sin * w.y, y = -rot_sin * w.x + rot_cos * w.y;
+        return (spec_ax * spec_ax * x * x + spec_ay * spec_ay * y * y) / (w.z * w.z);
+      };
+      const float g = ggx_g1(alpha2_tan2(wo)) * ggx_g1(alpha2_tan2(wi));
+      sum += kept(specular_weight != 0.0f, spec_fresnel.at(l_h) * (specular_weight * d * g * inv_4cc));
+    }
+
+    const float refl_w = final_transmission * fresnel * glass_reflection_on;
+    const float w = refl_w >= kCutoff ? refl_w : 0.0f;
+    if (!kSkip || w != 0.0f) {
+      const float a2 = refl_alpha * refl_alpha;
+      const float c2 = h.z * h.z;
+      const float t = a2 * c2 + (1.0f - c2);
+      const float d = a2 / (kPi * t * t);
+      const float g = ggx_g1(a2 * tan2_o) * ggx_g1(a2 * tan2_i);
+      // Per-field selects (a select of references would stop the loop vectorising).
+      const float gf0 = back ? glass_fresnel_back.f0 : glass_fresnel_front.f0;
+      const float ginv = back ? glass_fresnel_back.inv_one_minus_f0
+                              : glass_fresnel_front.inv_one_minus_f0;
+      const float fh = (fresnel_dielectric_select(l_h, eta) - gf0) * ginv;
+      const RGB gf = glass_fresnel_front.cspec0 * (1.0f - fh) + RGB(fh);
+      sum += kept(w != 0.0f, gf * (w * d * g * inv_4cc));
+    }
+
+    // Clearcoat: GTR1 D, G1 with α² 0.0625, Fresnel of η 1.5, × 0.25.
+    if (!kSkip || clearcoat != 0.0f) {
+      const float c2 = h.z * h.z;
+      const float d = cc_norm / (1.0f + (cc_alpha2 - 1.0f) * c2);
+      const float g = ggx_g1(0.0625f * tan2_o) * ggx_g1(0.0625f * tan2_i);
+      const float fr = 0.04f + 0.96f * cc_fresnel.factor(l_h);
+      sum += kept(clearcoat != 0.0f, RGB(clearcoat * 0.25f * fr * d * g * inv_4cc));
+    }
+    if (kSkip) return sum;  // reflected
+
+    const RGB refracted = refraction();
     // Per-channel selects: a select of structs becomes a branch and stops vectorisation.
-    return {pick(transmitted, refraction.r, reflected, sum.r),
-            pick(transmitted, refraction.g, reflected, sum.g),
-            pick(transmitted, refraction.b, reflected, sum.b)};
+    return {pick(transmitted, refracted.r, reflected, sum.r),
+            pick(transmitted, refracted.g, reflected, sum.g),
+            pick(transmitted, refracted.b, reflected, sum.b)};
   }
 
- private:
+  // `term` where `on`, else 0 (per-channel selects, which vectorise).
+  BXDF_KERNEL static RGB kept(bool on, const RGB& term) {
+    return {on ? term.r : 0.0f, on ? term.g : 0.0f, on ? term.b : 0.0f};
+  }
   BXDF_KERNEL static float pick(bool transmitted, float t, bool reflected, float r) {
     const float rr = reflected ? r : 0.0f;
     return transmitted ? t : rr;
