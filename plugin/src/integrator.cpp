@@ -221,7 +221,7 @@ void PathTracer::begin(const Ray& camera_ray, PathState* s) const {
 
 void PathTracer::prepare(const PathState& s, const Hit& hit, PreparedHit* prepared) const {
   SurfacePoint& sp = prepared->sp;
-  sp = scene_.surface_point(hit);
+  scene_.surface_point(hit, &sp);  // in place: a returned copy was read back before it landed
   const Vec3 wo = -s.ray.dir;
   const bool flipped = face_viewer(sp, wo, scene_.transmissive(sp.material));
   // Reflection is judged against the shading normal, as Cycles' closures do: directions
@@ -250,6 +250,10 @@ void PathTracer::prepare(const PathState& s, const Hit& hit, PreparedHit* prepar
 
 void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
                          const Hit* found_hit) const {
+  // Multiscatter GGX evaluates a 16-walk estimate seeded by the directions; salted per sample,
+  // its error averages away over a pixel's samples instead of staying fixed where they share
+  // the directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does.
+  const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
   if (!found_hit) return step(s, sampler, stats, nullptr, nullptr, nullptr);
   PreparedHit prepared;
   prepare(s, *found_hit, &prepared);
@@ -266,6 +270,7 @@ void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& st
 void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
                          const Hit& hit, const PreparedHit& prepared,
                          const Vec3* registers) const {
+  const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
   step(s, sampler, stats, &hit, &prepared, registers);
   test_shadow(s);
 }
@@ -273,8 +278,12 @@ void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& st
 void PathTracer::advance_deferring_shadow(PathState& s, const PathSampler& sampler,
                                           PathStats& stats, const Hit* hit,
                                           const PreparedHit* prepared,
-                                          const Vec3* registers) const {
+                                          const Vec3* registers,
+                                          uint64_t* walk_salt_slot) const {
+  const uint64_t outer_salt = *walk_salt_slot;
+  *walk_salt_slot = sampler.walk_salt();
   step(s, sampler, stats, hit, prepared, registers);  // an escaped path samples no light
+  *walk_salt_slot = outer_salt;
 }
 
 void PathTracer::test_shadow(PathState& s) const {
@@ -300,10 +309,6 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   PathResult& result = s.result;
   test_shadow(s);  // the previous vertex's, if the caller left it pending
   const auto& lights = scene_.lights();
-  // Multiscatter GGX evaluates a 16-walk estimate seeded by the directions; salted per sample,
-  // its error averages away over a pixel's samples instead of staying fixed where they share
-  // the directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does.
-  const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
   // The ways out of a vertex: the path ends here, or goes on to its next vertex.
   const auto end_path = [&s] { s.done = true; };
   const auto next_vertex = [&s] { ++s.vertex; };

@@ -62,7 +62,8 @@ int PathBatch::advance_live(int live, PathStats& stats) {
     PathState& path = paths_[size_t(k)];
     const bool found = found_[size_t(a)] != 0;
     tracer_.advance_deferring_shadow(path, sampler(k), stats, found ? &hits_[size_t(a)] : nullptr,
-                                     found ? &prepared_[size_t(a)] : nullptr, registers_[size_t(a)]);
+                                     found ? &prepared_[size_t(a)] : nullptr, registers_[size_t(a)],
+                                     walk_salt_slot_);
     if (path.shadow.active) {
       shadow_origins_[size_t(shadowed)] = path.shadow.origin;
       shadow_dirs_[size_t(shadowed)] = path.shadow.dir;
@@ -80,6 +81,7 @@ int PathBatch::advance_live(int live, PathStats& stats) {
 }
 
 void PathBatch::trace(PathStats& stats) {
+  walk_salt_slot_ = microfacet::MultiscatterWalkSalt::thread_slot();  // this thread's
   for (int k = 0; k < count_; k += Scene::kCameraPacket)
     scene_.intersect_camera_rays(&camera_rays_[size_t(k)], std::min(Scene::kCameraPacket, count_ - k),
                                  &camera_hits_[size_t(k)]);

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "bxdf/microfacet/multiscatter_ggx.h"
 #include "bxdf/render/integrator.h"
 #include "bxdf/render/scene.h"
 #include "sampler/path_sampler.h"
@@ -54,6 +55,8 @@ class PathBatch {
 
   const Scene& scene_;
   const PathTracer& tracer_;
+  // The tracing thread's multiscatter walk salt, looked up once per trace().
+  uint64_t* walk_salt_slot_ = nullptr;
   int count_ = 0;
   std::array<Sample, kSize> samples_;
   std::array<Ray, kSize> camera_rays_;

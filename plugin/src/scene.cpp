@@ -662,6 +662,12 @@ void Scene::prefetch_vertices(const Hit& hit) const {
 }
 
 SurfacePoint Scene::surface_point(const Hit& hit) const {
+  SurfacePoint sp;
+  surface_point(hit, &sp);
+  return sp;
+}
+
+void Scene::surface_point(const Hit& hit, SurfacePoint* out) const {
   // Computed in the mesh's space (world, or an instanced mesh's object space), then moved to
   // world space by the hit's placement: points and dp/du as points and vectors, normals by the
   // inverse transpose (which keeps an instance's outside out even when it mirrors).
@@ -675,7 +681,7 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
   const uint32_t i2 = m.indices[3 * size_t(hit.triangle) + 2];
   const float b0 = 1.0f - hit.b1 - hit.b2;
   const Vec3 p0 = load3(m.positions, i0), p1 = load3(m.positions, i1), p2 = load3(m.positions, i2);
-  SurfacePoint sp;
+  SurfacePoint& sp = *out;
   Vec3 p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
   const Vec3 e1 = p1 - p0, e2 = p2 - p0;
   Vec3 ng = cross(e1, e2);
@@ -721,7 +727,6 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
   }
   sp.tangent = have_tangent ? tangent : radial_tangent(hit, p);
   sp.material = material_of(hit);
-  return sp;
 }
 
 Vec3 Scene::uv(const Hit& hit, int map) const {

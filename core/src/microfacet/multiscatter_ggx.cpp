@@ -446,6 +446,7 @@ MultiscatterWalkSalt::MultiscatterWalkSalt(uint64_t salt) : previous_(walk_salt)
 }
 MultiscatterWalkSalt::~MultiscatterWalkSalt() { walk_salt = previous_; }
 uint64_t MultiscatterWalkSalt::current() { return walk_salt; }
+uint64_t* MultiscatterWalkSalt::thread_slot() { return &walk_salt; }
 
 // ---- Reflection ----
 

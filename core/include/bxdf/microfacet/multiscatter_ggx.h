@@ -102,6 +102,10 @@ class MultiscatterWalkSalt {
 
   // This thread's salt (0 outside any scope).
   static uint64_t current();
+  // This thread's salt variable itself, for a loop that sets it per sample (the renderer's
+  // path batches) and restores it afterwards: in a shared object every thread_local access is
+  // a call, which a scope per path vertex paid three times.
+  static uint64_t* thread_slot();
 
  private:
   uint64_t previous_;

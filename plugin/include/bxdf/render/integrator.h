@@ -121,10 +121,11 @@ class PathTracer {
   // The same as that advance(), but the vertex's shadow ray may stay pending (s.shadow): the
   // caller tests it, for many paths at once (Scene::occluded_stream), and calls
   // resolve_shadow(s, occluded) before the path's next vertex and before finish(). A null
-  // `hit` (and `prepared`) is an escaped ray.
+  // `hit` (and `prepared`) is an escaped ray. `walk_salt_slot`: this thread's multiscatter walk
+  // salt (MultiscatterWalkSalt::thread_slot()), set to the sample's for the vertex.
   void advance_deferring_shadow(PathState& s, const PathSampler& sampler, PathStats& stats,
                                 const Hit* hit, const PreparedHit* prepared,
-                                const Vec3* registers) const;
+                                const Vec3* registers, uint64_t* walk_salt_slot) const;
   static void resolve_shadow(PathState& s, bool occluded) {
     if (!s.shadow.active) return;
     s.shadow.active = false;
@@ -133,7 +134,9 @@ class PathTracer {
   PathResult finish(PathState& s, PathStats& stats) const;
 
  private:
-  // One vertex: `prepared` and `registers` (its program's, where it ran) for a found hit.
+  // One vertex: `prepared` and `registers` (its program's, where it ran) for a found hit. The
+  // caller has set the thread's multiscatter walk salt to the sample's (see Determinism in
+  // multiscatter_ggx.h).
   void step(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit* hit,
             const PreparedHit* prepared, const Vec3* registers) const;
   // Tests s's pending shadow ray alone and resolves it.
