@@ -250,7 +250,7 @@ void PathTracer::prepare(const PathState& s, const Hit& hit, PreparedHit* prepar
 
 void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
                          const Hit* found_hit) const {
-  // Multiscatter GGX evaluates a 16-walk estimate seeded by the directions; salted per sample,
+  // Multiscatter GGX evaluates a walk estimate seeded by the directions; salted per sample,
   // its error averages away over a pixel's samples instead of staying fixed where they share
   // the directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does.
   const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());

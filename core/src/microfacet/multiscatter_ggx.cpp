@@ -371,18 +371,20 @@ uint64_t hash_pair(const Vec3& a, const Vec3& b) {
 
 thread_local uint64_t walk_salt = 0;
 
-// The average of kMultiscatterWalks walks of the pair (start, end), seeded from the pair (and
-// the thread's salt, when a MultiscatterWalkSalt scope is open).
+// The average of kMultiscatterWalks walks of the pair (start, end), seeded from the pair, or,
+// when a MultiscatterWalkSalt scope is open, of kSaltedMultiscatterWalks seeded from the pair
+// and the thread's salt.
 template <bool kGlass>
 RGB averaged_walks(const Walk& p, const Vec3& start, const Vec3& end, bool end_outside) {
   const uint64_t pair = hash_pair(start, end);
   const uint64_t seed = walk_salt == 0 ? pair : mix64(pair ^ mix64(walk_salt));
+  const int walks = walk_salt == 0 ? kMultiscatterWalks : kSaltedMultiscatterWalks;
   RGB sum(0.0f);
-  for (int k = 0; k < kMultiscatterWalks; ++k) {
+  for (int k = 0; k < walks; ++k) {
     PCG32 rng(static_cast<uint64_t>(k), seed);
     sum += walk_eval<kGlass>(p, start, end, end_outside, rng);
   }
-  return sum * (1.0f / kMultiscatterWalks);
+  return sum * (1.0f / static_cast<float>(walks));
 }
 
 // The generator of one sampling walk: seeded by the bits of wo and u and the thread's salt.
