@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <limits>
 #include <new>
-#include <type_traits>
 #include <string>
+#include <type_traits>
 
 #include "bxdf/microfacet/multiscatter_ggx.h"
 #include "bxdf/models/cycles_transparent.h"
@@ -280,10 +280,14 @@ void PathTracer::advance_deferring_shadow(PathState& s, const PathSampler& sampl
                                           const PreparedHit* prepared,
                                           const Vec3* registers,
                                           uint64_t* walk_salt_slot) const {
-  const uint64_t outer_salt = *walk_salt_slot;
+  // Restored however step() leaves, so that no later evaluation on this thread sees the salt.
+  struct RestoreSalt {
+    uint64_t* slot;
+    uint64_t outer;
+    ~RestoreSalt() { *slot = outer; }
+  } restore{walk_salt_slot, *walk_salt_slot};
   *walk_salt_slot = sampler.walk_salt();
   step(s, sampler, stats, hit, prepared, registers);  // an escaped path samples no light
-  *walk_salt_slot = outer_salt;
 }
 
 void PathTracer::test_shadow(PathState& s) const {

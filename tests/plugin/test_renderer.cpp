@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "bxdf/microfacet/multiscatter_ggx.h"
 #include "bxdf/registry.h"
 #include "bxdf/render/renderer.h"
 #include "bxdf/render/shapes.h"
@@ -69,6 +70,36 @@ TEST(Renderer, ImageDoesNotDependOnThreadCount) {
     sum += one[i];
   }
   EXPECT_LT(diff / sum, 0.1);
+  EXPECT_GT(sum, 0.0);
+}
+
+// Multiscatter GGX walks are salted per camera sample, through each render thread's salt slot:
+// the image is the same bits at any thread count, and the thread that rendered is left with no
+// salt (an evaluation after the render is the unsalted f again).
+TEST(Renderer, MultiscatterWalksAreSaltedPerSampleAndTheSaltIsRestored) {
+  Scene scene;
+  ParamSet multiscatter;
+  multiscatter.set("distribution", std::string("multi_ggx"));
+  multiscatter.set("roughness", 0.6);
+  const BxDFPtr glossy = make("cycles_glossy", multiscatter);
+  scene.add_material(Material{{glossy}, RGB(0.0f)});
+  scene.add_mesh(make_uv_sphere(Vec3(0, 0, 0), 1.0f, 32, 16, 0).view());
+  scene.add_light(point_light(Vec3(2, -2, 3), RGB(20.0f)));
+  scene.set_world(RGB(0.2f));
+  scene.commit();
+  const Vec3 wo = normalize(Vec3(0.3f, 0.1f, 0.9f)), wi = normalize(Vec3(-0.5f, 0.2f, 0.6f));
+  const RGB unsalted = glossy->f(wo, wi);
+  RenderSettings s = small_settings();
+  s.threads = 1;
+  const std::vector<float> one = render_scene(scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s).rgba();
+  EXPECT_EQ(microfacet::MultiscatterWalkSalt::current(), 0u);
+  EXPECT_EQ(glossy->f(wo, wi).r, unsalted.r);
+  s.threads = 2;
+  const std::vector<float> two = render_scene(scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s).rgba();
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(microfacet::MultiscatterWalkSalt::current(), 0u);
+  double sum = 0.0;
+  for (float v : one) sum += v;
   EXPECT_GT(sum, 0.0);
 }
 
