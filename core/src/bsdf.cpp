@@ -84,6 +84,19 @@ RGB BSDF::component_f(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_worl
   return bump_shadowed(i, components_[i]->f(wo, wi), wo, wi, wi_world);
 }
 
+RGB BSDF::component_f_pdf(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_world,
+                          bool scatters, bool weighs, float* pdf) const {
+  const BxDF& b = *components_[i];
+  Vec3 g;
+  if (clipped_lobe(i, wo, &g)) {  // component_pdf's clipped case
+    if (weighs) *pdf = cosine_above_plane_pdf(wi, g);
+    return scatters ? component_f(i, wo, wi, wi_world) : RGB(0.0f);
+  }
+  if (scatters && weighs) return bump_shadowed(i, b.f_pdf(wo, wi, pdf), wo, wi, wi_world);
+  if (weighs) *pdf = b.pdf(wo, wi);
+  return scatters ? component_f(i, wo, wi, wi_world) : RGB(0.0f);
+}
+
 RGB BSDF::apply_bump_shadowing(int i, RGB f, const Vec3& wo, const Vec3& wi,
                                 const Vec3& wi_world) const {
   if (bump_shadowing_[i] == BumpShadowing::Whole) {
@@ -136,13 +149,15 @@ void BSDF::f_f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask
       f_cos_total += weights_[i] * (f * abs_cos_theta(s.wi));
       continue;
     }
-    if (sample_weights_[i] == 0.0f && !scatters) continue;
+    const bool weighs = sample_weights_[i] != 0.0f;
+    if (!weighs && !scatters) continue;
     const Vec3 wo = frames_[i].to_local(wo_world);
     if (wo.z == 0.0f) continue;
     const Vec3 wi = frames_[i].to_local(wi_world);
-    if (sample_weights_[i] != 0.0f) pdf_sum += sample_weights_[i] * component_pdf(i, wo, wi);
+    float pdf = 0.0f;
+    const RGB f = component_f_pdf(i, wo, wi, wi_world, scatters, weighs, &pdf);
+    if (weighs) pdf_sum += sample_weights_[i] * pdf;
     if (!scatters) continue;
-    const RGB f = component_f(i, wo, wi, wi_world);
     f_total += weights_[i] * f;
     f_cos_total += weights_[i] * (f * abs_cos_theta(wi));
   }
@@ -175,34 +190,9 @@ float BSDF::pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask) const
 }
 
 RGB BSDF::f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, float* pdf_out) const {
-  const bool reflect = dot(wi_world, ng_) * dot(wo_world, ng_) > 0.0f;
-  RGB f_cos_total(0.0f);
-  float pdf_sum = 0.0f, total_weight = 0.0f;
-  for (int i = 0; i < count_; ++i) {
-    const BxDF& b = *components_[i];
-    total_weight += sample_weights_[i];
-    const bool scatters = agrees_with_geometry(b.flags(), reflect);
-    const bool weighs = sample_weights_[i] != 0.0f;
-    if (!scatters && !weighs) continue;
-    const Vec3 wo = frames_[i].to_local(wo_world);
-    if (wo.z == 0.0f) continue;
-    const Vec3 wi = frames_[i].to_local(wi_world);
-    Vec3 g;
-    RGB f;
-    float pdf;
-    if (clipped_lobe(i, wo, &g)) {  // component_pdf's clipped case
-      pdf = cosine_above_plane_pdf(wi, g);
-      f = scatters ? b.f(wo, wi) : RGB(0.0f);
-    } else if (scatters) {
-      f = b.f_pdf(wo, wi, &pdf);
-    } else {
-      pdf = b.pdf(wo, wi);
-    }
-    if (weighs) pdf_sum += sample_weights_[i] * pdf;
-    if (scatters) f_cos_total += weights_[i] * (bump_shadowed(i, f, wo, wi, wi_world) * abs_cos_theta(wi));
-  }
-  *pdf_out = total_weight > 0.0f ? pdf_sum / total_weight : 0.0f;
-  return f_cos_total;
+  RGB f, f_cos;
+  f_f_cos_pdf(wo_world, wi_world, kAll, &f, &f_cos, pdf_out);
+  return f_cos;
 }
 
 BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {

@@ -80,7 +80,7 @@ class BSDF {
   // (with unit weights, the average).
   float pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask = kAll) const;
   // f_cos(wo, wi) and pdf(wo, wi) (every component) in one pass over the components, each
-  // evaluated once for both (BxDF::f_pdf): a light sample's pair. The same values as the two
+  // evaluated once for both (f_f_cos_pdf): a light sample's pair. The same values as the two
   // calls.
   RGB f_cos_pdf(const Vec3& wo_world, const Vec3& wi_world, float* pdf_out) const;
   // Picks a matching component with u.x in proportion to its sample weight, remaps u.x to
@@ -107,6 +107,11 @@ class BSDF {
   RGB weighted_sum(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask, Term term) const;
   // Component i's f at local wo, wi, with Cycles' bump shadowing where it applies.
   RGB component_f(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const;
+  // What f_f_cos_pdf needs of component i: its f as component_f gives it where `scatters`
+  // (else 0), and its pdf as component_pdf gives it into *pdf where `weighs` (else *pdf is left
+  // as it is); one call of the model where it needs both (BxDF::f_pdf).
+  RGB component_f_pdf(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_world, bool scatters,
+                      bool weighs, float* pdf) const;
   // f of component i with the bump-shadowing term its normal calls for. Most components have
   // none: that test is inline, so that the callers' loops do not spill around a call.
   RGB bump_shadowed(int i, RGB f, const Vec3& wo, const Vec3& wi, const Vec3& wi_world) const {
