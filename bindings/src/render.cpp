@@ -264,9 +264,10 @@ for the partial images too.
 (8; 0 = direct light only), ``pixel_filter`` ("box", "gaussian", "blackman_harris" or
 "pixel_center", any case; Blackman-Harris, Cycles' default), ``filter_width`` (1.5 px),
 ``threads`` (0 = all cores), ``seed`` (0), ``tile_size`` (16), ``samples_per_pass`` (0 =
-automatic), ``russian_roulette_depth`` (3), ``transparent_max_bounces`` (8: Cycles' setting;
-passes through Transparent BSDFs are not bounces, and the surface after this many + 1 passes adds
-only its emission), ``transparent_background`` (False).
+automatic), ``russian_roulette_depth`` (1: paths may be ended at random once they have
+scattered this many + 1 times; Cycles' Min Light Bounces + 1), ``transparent_max_bounces`` (8:
+Cycles' setting; passes through Transparent BSDFs are not bounces, and the surface after this
+many + 1 passes adds only its emission), ``transparent_background`` (False).
 
 ``on_progress(done, total, image)`` is called on the calling thread, holding the GIL, while the
 render runs on C++ threads: ``done``/``total`` count tiles over the whole render (reported at most

@@ -126,7 +126,7 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
                 return not cancelled
 
             settings = renderer.settings_dict(scene.bxdf_lab_render, purpose,
-                                              renderer.transparent_max_bounces(scene))
+                                              renderer.cycles_light_paths(scene))
             # Blender without a window (blender -b) shows no partial result: the passes' images
             # (a copy, a flip and foreach_set each, ~1 ms at 128², competing with the render
             # threads) would be made for nobody. Cycles updates none there either.

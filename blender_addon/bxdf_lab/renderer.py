@@ -30,27 +30,33 @@ def binding():
 # so that the first image comes at once and each pass refines it.
 PURPOSES = ("final", "preview", "viewport")
 QUICK_MAX_BOUNCES = 4
-# Cycles' default transparent_max_bounces, for a scene without Cycles' settings.
+# Cycles' defaults of the Light Paths settings BxDF Lab reads too, for a scene without Cycles'.
 DEFAULT_TRANSPARENT_MAX_BOUNCES = 8
+DEFAULT_MIN_LIGHT_BOUNCES = 0
 
 
-def transparent_max_bounces(scene):
-    """The scene's Cycles setting (Render Properties > Light Paths > Transparent): passes through
-    Transparent BSDFs are not bounces in Cycles, and BxDF Lab reads the same number so that a
-    scene renders alike in both, without a second setting to keep in step."""
+def cycles_light_paths(scene):
+    """bxdf.render's settings from the scene's Cycles Light Paths settings that both renderers
+    read (Render Properties > Light Paths), so that a scene renders alike in both without a second
+    setting to keep in step: Transparent (passes through Transparent BSDFs are not bounces in
+    Cycles) and Min Light Bounces (Cycles ends no path at random before its
+    (min_light_bounces + 2)-th scattering, that is from russian_roulette_depth
+    min_light_bounces + 1 on: Cycles' kernel counts one bounce more)."""
     cycles = getattr(scene, "cycles", None)
-    return int(getattr(cycles, "transparent_max_bounces", DEFAULT_TRANSPARENT_MAX_BOUNCES))
+    transparent = int(getattr(cycles, "transparent_max_bounces", DEFAULT_TRANSPARENT_MAX_BOUNCES))
+    min_light = int(getattr(cycles, "min_light_bounces", DEFAULT_MIN_LIGHT_BOUNCES))
+    return {"transparent_max_bounces": transparent, "russian_roulette_depth": min_light + 1}
 
 
-def settings_dict(render_settings, purpose="final",
-                  transparent_bounces=DEFAULT_TRANSPARENT_MAX_BOUNCES):
-    """bxdf.render's settings from the add-on's render settings; `transparent_bounces` is
-    transparent_max_bounces(scene)."""
+def settings_dict(render_settings, purpose="final", light_paths=None):
+    """bxdf.render's settings from the add-on's render settings; `light_paths` is
+    cycles_light_paths(scene) (Cycles' defaults when None)."""
     if purpose not in PURPOSES:
         raise ValueError(f"render purpose '{purpose}' is unknown; expected one of {PURPOSES}")
+    if light_paths is None:
+        light_paths = cycles_light_paths(None)
     s = render_settings
-    settings = {"samples": s.samples, "max_bounces": s.max_bounces,
-                "transparent_max_bounces": transparent_bounces,
+    settings = {"samples": s.samples, "max_bounces": s.max_bounces, **light_paths,
                 "pixel_filter": s.pixel_filter.lower(), "filter_width": s.filter_width,
                 "threads": s.threads, "seed": s.seed}
     if purpose != "final":

@@ -221,7 +221,8 @@ class BXDFLAB_PT_render(bpy.types.Panel):
             if name == "filter_width" and settings.pixel_filter == "PIXEL_CENTER":
                 continue
             layout.prop(settings, name)
-        if hasattr(context.scene, "cycles"):  # the one setting both renderers read
+        if hasattr(context.scene, "cycles"):  # the Light Paths settings both renderers read
+            layout.prop(context.scene.cycles, "min_light_bounces")
             layout.prop(context.scene.cycles, "transparent_max_bounces")
         row = layout.row(align=True)
         row.operator("bxdf_lab.compare_renders", icon="IMAGE_REFERENCE")

@@ -224,7 +224,7 @@ class ViewportSession:
         width, height = max(1, region.width // pixel_size), max(1, region.height // pixel_size)
         region_data = context.region_data
         render_settings = renderer.settings_dict(settings, "viewport",
-                                                 renderer.transparent_max_bounces(scene))
+                                                 renderer.cycles_light_paths(scene))
         key = (self.scene_version, width, height, tuple(map(tuple, region_data.view_matrix)),
                tuple(map(tuple, region_data.window_matrix)), tuple(sorted(render_settings.items())))
         if key != self.job_key:

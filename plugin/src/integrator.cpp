@@ -428,8 +428,10 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   ray.tmax = kInfinity;
 
   // Russian roulette after scattering events only: transparent passes are bounded by their
-  // own budget (unbiased either way; Cycles also rolls there).
-  if (bounce - 1 >= settings_.russian_roulette_depth) {
+  // own budget (unbiased either way; Cycles also rolls there). Not before a vertex that will
+  // not scatter: it only adds its emission (and the lights the ray passes), which a roll would
+  // leave to chance to save one ray. (Cycles rolls at the hit and counts that light in full.)
+  if (bounce - 1 >= settings_.russian_roulette_depth && bounce <= settings_.max_bounces) {
     // Judged on the throughput without refraction's radiance scaling, as pbrt does, so that a
     // path inside glass is not ended more often only because its radiance is scaled down.
     // Continued with Cycles' probability √(max throughput), capped at 1: a path that still

@@ -100,7 +100,7 @@ def test_render_panel_draws_the_settings():
     drawn = [e[1] for e in _draw(ui.BXDFLAB_PT_render, context) if e[0] == "prop"]
     assert drawn == ["samples", "preview_samples", "viewport_samples", "viewport_pixel_size",
                      "max_bounces", "pixel_filter", "filter_width", "threads", "seed",
-                     "transparent_max_bounces"]  # Cycles' own setting, read by both renderers
+                     "min_light_bounces", "transparent_max_bounces"]  # Cycles', read by both
 
 
 def _rna(group, name):

@@ -283,6 +283,55 @@ TEST(PixelFilter, BlackmanHarrisMatchesCyclesWindow) {
 // An emissive enclosure of radiance 1 around a grey Lambertian sphere: the sphere reflects
 // ρ·1 from every point (area-light sampling and BSDF hits on the emitter, weighted by MIS),
 // and the enclosure itself is seen at its radiance.
+// Russian roulette where Cycles plays it (Min Light Bounces 0 is russian_roulette_depth 1): no
+// path ends at random before it has scattered depth + 1 times, none is rolled for the ray to a
+// vertex that only adds emission, and the rest go on with probability √(max throughput). Counted
+// in rays, inside a closed box of albedo 1/4 (every ray hits; a cosine sample's throughput is
+// exactly the albedo, so the probabilities are known): each path's camera ray, one ray per
+// scattering, and none after the path ends.
+TEST(Renderer, RussianRouletteStartsWhereCyclesDoesAndSparesTheLastRay) {
+  Scene scene;
+  ParamSet quarter;
+  quarter.set("reflectance", RGBValue{0.25, 0.25, 0.25});
+  scene.add_material(Material{{make("lambertian", quarter)}, RGB(0.0f)});
+  const Mesh box = make_box(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0);
+  scene.add_mesh(box.view());
+  scene.commit();
+  const auto rays_per_path = [&](int max_bounces, int depth) {
+    RenderSettings s;
+    s.width = s.height = 24;
+    s.samples_per_pixel = 16;
+    s.max_bounces = max_bounces;
+    s.russian_roulette_depth = depth;
+    RenderStats stats;
+    render_scene(scene, camera_at(Vec3(0, -1, 0), Vec3(0, 1, 0)), s, {}, &stats);
+    EXPECT_EQ(stats.shadow_rays, 0u);  // no lights
+    return std::pair<uint64_t, uint64_t>(stats.rays, stats.camera_samples);
+  };
+  // max_bounces 1: two scatterings, then the vertex that only adds emission; depth 1 rolls
+  // before neither ray.
+  {
+    const auto [rays, paths] = rays_per_path(1, 1);
+    EXPECT_EQ(rays, 3 * paths);
+  }
+  // max_bounces 2, depth 1: rolled once, after the second scattering, going on with
+  // p = √(1/16) = 1/4 to the third (and its ray to the last vertex): 2 + 2p rays on average.
+  {
+    const auto [rays, paths] = rays_per_path(2, 1);
+    const double extra = double(rays) - 2.0 * double(paths);  // 2 rays per surviving path
+    const double survivors = extra / 2.0;
+    const double expected = 0.25 * double(paths);
+    const double sigma = std::sqrt(double(paths) * 0.25 * 0.75);
+    EXPECT_EQ((rays - 2 * paths) % 2, 0u);
+    EXPECT_NEAR(survivors, expected, 5.0 * sigma);
+  }
+  // max_bounces 2, depth 3: never rolled.
+  {
+    const auto [rays, paths] = rays_per_path(2, 3);
+    EXPECT_EQ(rays, 4 * paths);
+  }
+}
+
 TEST(AreaLight, EmissiveEnclosureLightsASphereToItsAlbedo) {
   Scene scene;
   ParamSet grey;

@@ -24,7 +24,9 @@ class PathSampler;  // sampler/path_sampler.h: the path's Sobol-Burley numbers
 struct IntegratorSettings {
   // 0 = direct light only (emitters seen from the first hit); n = up to n indirect bounces.
   int max_bounces = 8;
-  int russian_roulette_depth = 3;  // first bounce at which a path may be ended at random
+  // Paths may be ended at random once they have scattered this many + 1 times: 1 is Cycles'
+  // default (Min Light Bounces 0; Cycles' kernel counts one bounce more).
+  int russian_roulette_depth = 1;
   // Passes through Transparent BSDFs a path may make (Cycles' transparent_max_bounces; they are
   // not bounces): the surface after one more pass adds only its emission. Also the shadow
   // rays' budget, less the path's passes so far.
