@@ -288,8 +288,8 @@ def test_two_sphere_furnace_noise_per_sample_is_no_more_than_cycles(tmp_path):
     # Two touching white spheres (albedo 0.8) in a constant world: light is found by BSDF
     # sampling alone in both renderers, paths bounce between the spheres. At one sample per
     # pixel the spread of pixel values is the estimator's own (Cycles' per-pixel stratification
-    # cannot act on one sample); measured from two seeds over 256 × 256 pixels. Ours was 0.91 ×
-    # Cycles' (Cycles' Russian roulette starts at its third hit, ours later); at 16 samples
+    # cannot act on one sample); measured from two seeds over 256 × 256 pixels. Both start
+    # Russian roulette at the third hit and roll at the hit, never for an escaping ray; at 16 samples
     # Cycles' stratified sampler makes its noise fall faster than 1/√N (1.2-1.5 × ours), which
     # is the sampler's matter, not the estimator's.
     scene = _scene(1, bounces=8, camera=(0, -7, 0), target=(0, 0, 0))

@@ -284,12 +284,13 @@ TEST(PixelFilter, BlackmanHarrisMatchesCyclesWindow) {
 // ρ·1 from every point (area-light sampling and BSDF hits on the emitter, weighted by MIS),
 // and the enclosure itself is seen at its radiance.
 // Russian roulette where Cycles plays it (Min Light Bounces 0 is russian_roulette_depth 1): no
-// path ends at random before it has scattered depth + 1 times, none is rolled for the ray to a
-// vertex that only adds emission, and the rest go on with probability √(max throughput). Counted
-// in rays, inside a closed box of albedo 1/4 (every ray hits; a cosine sample's throughput is
+// path ends at random before it has scattered depth + 1 times; the roll is made at the hit the
+// next ray finds (so that ray is always traced and what it brings back counts), not at a vertex
+// that only adds emission, and the path goes on with probability √(max throughput). Counted in
+// rays, inside a closed box of albedo 1/4 (every ray hits; a cosine sample's throughput is
 // exactly the albedo, so the probabilities are known): each path's camera ray, one ray per
 // scattering, and none after the path ends.
-TEST(Renderer, RussianRouletteStartsWhereCyclesDoesAndSparesTheLastRay) {
+TEST(Renderer, RussianRouletteStartsWhereCyclesDoesAndRollsAtTheHit) {
   Scene scene;
   ParamSet quarter;
   quarter.set("reflectance", RGBValue{0.25, 0.25, 0.25});
@@ -308,22 +309,20 @@ TEST(Renderer, RussianRouletteStartsWhereCyclesDoesAndSparesTheLastRay) {
     EXPECT_EQ(stats.shadow_rays, 0u);  // no lights
     return std::pair<uint64_t, uint64_t>(stats.rays, stats.camera_samples);
   };
-  // max_bounces 1: two scatterings, then the vertex that only adds emission; depth 1 rolls
-  // before neither ray.
+  // max_bounces 1: two scatterings, then the vertex that only adds emission, where depth 1
+  // does not roll.
   {
     const auto [rays, paths] = rays_per_path(1, 1);
     EXPECT_EQ(rays, 3 * paths);
   }
-  // max_bounces 2, depth 1: rolled once, after the second scattering, going on with
-  // p = √(1/16) = 1/4 to the third (and its ray to the last vertex): 2 + 2p rays on average.
+  // max_bounces 2, depth 1: every path traces its third ray and is rolled at that hit, going
+  // on with p = √(1/16) = 1/4 to scatter a third time: 3 + p rays on average.
   {
     const auto [rays, paths] = rays_per_path(2, 1);
-    const double extra = double(rays) - 2.0 * double(paths);  // 2 rays per surviving path
-    const double survivors = extra / 2.0;
-    const double expected = 0.25 * double(paths);
+    ASSERT_GE(rays, 3 * paths);
+    const double survivors = double(rays - 3 * paths);
     const double sigma = std::sqrt(double(paths) * 0.25 * 0.75);
-    EXPECT_EQ((rays - 2 * paths) % 2, 0u);
-    EXPECT_NEAR(survivors, expected, 5.0 * sigma);
+    EXPECT_NEAR(survivors, 0.25 * double(paths), 5.0 * sigma);
   }
   // max_bounces 2, depth 3: never rolled.
   {

@@ -73,6 +73,10 @@ struct PathState {
   int bounce = 0;               // scattering events so far (Cycles' `bounce`)
   int transparent_bounces = 0;  // passes through transparent surfaces so far
   int vertex = 0;               // surface hits so far; the sampler's dimensions follow it
+  // Russian roulette's probability of going on past the ray's hit: set where the path
+  // scattered, rolled at the hit once what the ray brought back has counted (Cycles rolls in
+  // intersect_closest, and never for a ray that escapes).
+  float continuation = 1.0f;
   PathResult result;
   bool done = false;
   PendingShadow shadow;  // the last vertex's, until resolve_shadow()

@@ -19,9 +19,7 @@ struct RenderSettings {
   int width = 64, height = 64;
   int samples_per_pixel = 16;
   int max_bounces = 8;
-  // Paths may be ended at random once they have scattered this many + 1 times: 1 is Cycles'
-  // default (Min Light Bounces 0; Cycles' kernel counts one bounce more).
-  int russian_roulette_depth = 1;
+  int russian_roulette_depth = 1;   // Cycles' Min Light Bounces + 1 (integrator.h)
   int transparent_max_bounces = 8;  // Cycles' transparent_max_bounces (integrator.h)
   FilterType filter = FilterType::Box;
   float filter_width = 1.0f;  // pixels (Blender's filter_width for Gaussian)
