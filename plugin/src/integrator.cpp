@@ -219,7 +219,28 @@ void PathTracer::begin(const Ray& camera_ray, PathState* s) const {
   s->ray = camera_ray;
 }
 
-void PathTracer::prepare(const PathState& s, const Hit& hit, PreparedHit* prepared) const {
+void PathTracer::prepare(const PathState& s, const PathSampler& sampler, const Hit& hit,
+                         PreparedHit* prepared) const {
+  const uint32_t material = scene_.material_of(hit);
+  const bool ends_here = s.transparent_bounces > settings_.transparent_max_bounces;
+  prepared->scatters = !ends_here && s.bounce <= settings_.max_bounces;
+  prepared->may_pass = !ends_here && transparent_shadows_.transparent(material);
+  prepared->runs_program = false;
+  prepared->roulette_rolled = false;
+  prepared->ended_by_roulette = false;
+  const Material& mat = scene_.materials()[material];
+  const MaterialGraph* graph = mat.graph.get();
+  // Russian roulette before any shading where the hit adds nothing of its own (no emission; a
+  // camera ray, which may see a holdout, is never rolled for): the same number step() would
+  // draw, so the same paths end, but an ended path costs no surface point and no program.
+  if (s.continuation < 1.0f && (prepared->scatters || prepared->may_pass) &&
+      mat.emission.is_black() && (!graph || graph->emission_is_constant())) {
+    prepared->roulette_rolled = true;
+    if (!(sampler.russian_roulette(s.vertex) < s.continuation)) {
+      prepared->ended_by_roulette = true;
+      return;
+    }
+  }
   SurfacePoint& sp = prepared->sp;
   scene_.surface_point(hit, &sp);  // in place: a returned copy was read back before it landed
   const Vec3 wo = -s.ray.dir;
@@ -231,11 +252,6 @@ void PathTracer::prepare(const PathState& s, const Hit& hit, PreparedHit* prepar
   const float viewer_side = dot(wo, sp.ng) < 0.0f ? -1.0f : 1.0f;
   prepared->viewer_n = viewer_side_normal(sp, wo);
   prepared->frame = Frame::from_normal_tangent(prepared->viewer_n * viewer_side, sp.tangent);
-  const bool ends_here = s.transparent_bounces > settings_.transparent_max_bounces;
-  prepared->scatters = !ends_here && s.bounce <= settings_.max_bounces;
-  prepared->may_pass = !ends_here && transparent_shadows_.transparent(sp.material);
-  const MaterialGraph* graph = scene_.materials()[sp.material].graph.get();
-  prepared->runs_program = false;
   // A graph of constants only (no nodes; Cycles' default tangent is a node's) has nothing to
   // run: its closures and emission read no register.
   if (!graph || (graph->nodes.empty() && graph->default_tangent_reg < 0)) return;
@@ -256,7 +272,7 @@ void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& st
   const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
   if (!found_hit) return step(s, sampler, stats, nullptr, nullptr, nullptr);
   PreparedHit prepared;
-  prepare(s, *found_hit, &prepared);
+  prepare(s, sampler, *found_hit, &prepared);
   const Vec3* registers = nullptr;
   if (prepared.runs_program) {
     Vec3* r = shading_scratch().registers;
@@ -331,6 +347,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
     return end_path();
   }
   if (vertex == 0) result.alpha = 1.0f;
+  if (prepared->ended_by_roulette) return end_path();
   const Hit& hit = *found_hit;
 
   const SurfacePoint& sp = prepared->sp;  // turned towards the viewer (face_viewer)
@@ -375,7 +392,8 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   // threw away escaping rays' world light too: in a two-sphere furnace the noise per sample was
   // 1.42 x Cycles'. A vertex that neither scatters nor passes ends the path anyway.
   if (s.continuation < 1.0f && (scatters || may_pass)) {
-    if (!(sampler.russian_roulette(vertex) < s.continuation)) return end_path();
+    if (!prepared->roulette_rolled && !(sampler.russian_roulette(vertex) < s.continuation))
+      return end_path();
     beta *= 1.0f / s.continuation;
     s.continuation = 1.0f;
   }
@@ -447,6 +465,18 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
     // carries its full throughput is never cut, so a white furnace stays noise-free.
     const float m = beta.max_component() * eta_scale;
     s.continuation = std::min(std::sqrt(m), 1.0f);
+  }
+  if (!scene_.rays_find_light()) {
+    // Nothing a ray finds counts before the vertex it lands on scatters (a black world, no
+    // light it can hit, no emission): a ray that vertex cannot scatter from is not traced,
+    // and the roulette is rolled now, with the number the hit would draw. The same image as
+    // rolling at the hit, without the rays that brought nothing back.
+    if (bounce > settings_.max_bounces) return end_path();
+    if (s.continuation < 1.0f) {
+      if (!(sampler.russian_roulette(vertex + 1) < s.continuation)) return end_path();
+      beta *= 1.0f / s.continuation;
+      s.continuation = 1.0f;
+    }
   }
   next_vertex();
 }

@@ -37,7 +37,8 @@ int PathBatch::advance_live(int live, PathStats& stats) {
     registers_[size_t(a)] = nullptr;
     if (!found_[size_t(a)]) continue;
     PreparedHit& p = prepared_[size_t(a)];
-    tracer_.prepare(paths_[size_t(live_[size_t(a)])], hits_[size_t(a)], &p);
+    const int k = live_[size_t(a)];
+    tracer_.prepare(paths_[size_t(k)], sampler(k), hits_[size_t(a)], &p);
     if (p.runs_program) programs_[size_t(a)] = scene_.materials()[p.sp.material].graph.get();
   }
   // Each program over its hits (few materials per batch: one scan per program).

@@ -289,46 +289,99 @@ TEST(PixelFilter, BlackmanHarrisMatchesCyclesWindow) {
 // that only adds emission, and the path goes on with probability √(max throughput). Counted in
 // rays, inside a closed box of albedo 1/4 (every ray hits; a cosine sample's throughput is
 // exactly the albedo, so the probabilities are known): each path's camera ray, one ray per
-// scattering, and none after the path ends.
+// scattering, and none after the path ends. With a white world (never seen from inside the box,
+// and not light-sampled) a ray could bring light back by itself, so every ray is traced; with a
+// black one nothing a ray finds counts before its vertex scatters, so the ray a roll would end
+// and the ray towards a vertex that only adds emission are not traced, and the image is the same.
 TEST(Renderer, RussianRouletteStartsWhereCyclesDoesAndRollsAtTheHit) {
-  Scene scene;
-  ParamSet quarter;
-  quarter.set("reflectance", RGBValue{0.25, 0.25, 0.25});
-  scene.add_material(Material{{make("lambertian", quarter)}, RGB(0.0f)});
-  const Mesh box = make_box(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0);
-  scene.add_mesh(box.view());
-  scene.commit();
-  const auto rays_per_path = [&](int max_bounces, int depth) {
+  const auto rays_per_path = [](bool white_world, int max_bounces, int depth) {
+    Scene scene;
+    ParamSet quarter;
+    quarter.set("reflectance", RGBValue{0.25, 0.25, 0.25});
+    scene.add_material(Material{{make("lambertian", quarter)}, RGB(0.0f)});
+    const Mesh box = make_box(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0);
+    scene.add_mesh(box.view());
+    if (white_world) scene.set_world(RGB(1.0f));
+    scene.commit();
+    EXPECT_EQ(scene.rays_find_light(), white_world);
     RenderSettings s;
     s.width = s.height = 24;
     s.samples_per_pixel = 16;
     s.max_bounces = max_bounces;
     s.russian_roulette_depth = depth;
     RenderStats stats;
-    render_scene(scene, camera_at(Vec3(0, -1, 0), Vec3(0, 1, 0)), s, {}, &stats);
+    const Film film = render_scene(scene, camera_at(Vec3(0, -1, 0), Vec3(0, 1, 0)), s, {}, &stats);
     EXPECT_EQ(stats.shadow_rays, 0u);  // no lights
+    float px[4];
+    film.pixel(12, 12, px);
+    EXPECT_EQ(px[0], 0.0f);  // nothing inside the box emits, and the world is never seen
     return std::pair<uint64_t, uint64_t>(stats.rays, stats.camera_samples);
   };
-  // max_bounces 1: two scatterings, then the vertex that only adds emission, where depth 1
-  // does not roll.
-  {
-    const auto [rays, paths] = rays_per_path(1, 1);
-    EXPECT_EQ(rays, 3 * paths);
+  for (const bool white_world : {true, false}) {
+    SCOPED_TRACE(white_world ? "white world" : "black world");
+    // Traced per path besides its camera ray and one ray per scattering: the ray towards the
+    // vertex that only adds emission, only where a ray can find light.
+    const uint64_t emission_ray = white_world ? 1 : 0;
+    // max_bounces 1: two scatterings, then the vertex that only adds emission, where depth 1
+    // does not roll.
+    {
+      const auto [rays, paths] = rays_per_path(white_world, 1, 1);
+      EXPECT_EQ(rays, (2 + emission_ray) * paths);
+    }
+    // max_bounces 2, depth 1: the third ray is rolled for with p = √(1/16) = 1/4 (at its hit
+    // where it is traced), and a survivor scatters a third time: 2 + (white world: 1) + p rays
+    // on average.
+    {
+      const auto [rays, paths] = rays_per_path(white_world, 2, 1);
+      const uint64_t sure = (white_world ? 3 : 2) * paths;
+      ASSERT_GE(rays, sure);
+      const double survivors = double(rays - sure);
+      const double sigma = std::sqrt(double(paths) * 0.25 * 0.75);
+      EXPECT_NEAR(survivors, 0.25 * double(paths), 5.0 * sigma);
+    }
+    // max_bounces 2, depth 3: never rolled.
+    {
+      const auto [rays, paths] = rays_per_path(white_world, 2, 3);
+      EXPECT_EQ(rays, (3 + emission_ray) * paths);
+    }
   }
-  // max_bounces 2, depth 1: every path traces its third ray and is rolled at that hit, going
-  // on with p = √(1/16) = 1/4 to scatter a third time: 3 + p rays on average.
-  {
-    const auto [rays, paths] = rays_per_path(2, 1);
-    ASSERT_GE(rays, 3 * paths);
-    const double survivors = double(rays - 3 * paths);
-    const double sigma = std::sqrt(double(paths) * 0.25 * 0.75);
-    EXPECT_NEAR(survivors, 0.25 * double(paths), 5.0 * sigma);
-  }
-  // max_bounces 2, depth 3: never rolled.
-  {
-    const auto [rays, paths] = rays_per_path(2, 3);
-    EXPECT_EQ(rays, 4 * paths);
-  }
+}
+
+// The rays not traced where no ray can find light change no pixel. A closed box lit by a point
+// light (not hittable: radius 0) is rendered with a black world, and again with a white one that
+// no ray can reach but that makes every ray be traced and rolled for at its hit: the same bits,
+// with fewer rays.
+TEST(Renderer, RaysThatCannotFindLightAreNotTracedAndChangeNoPixel) {
+  const auto render = [](bool white_world, RenderStats* stats) {
+    Scene scene;
+    ParamSet half;
+    half.set("reflectance", RGBValue{0.5, 0.6, 0.7});
+    scene.add_material(Material{{make("lambertian", half)}, RGB(0.0f)});
+    const Mesh box = make_box(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0);
+    scene.add_mesh(box.view());
+    scene.add_light(point_light(Vec3(0.5f, 0.5f, 1.5f), RGB(10.0f)));
+    if (white_world) scene.set_world(RGB(1.0f));
+    scene.commit();
+    RenderSettings s;
+    s.width = s.height = 16;
+    s.samples_per_pixel = 16;
+    s.max_bounces = 4;
+    return render_scene(scene, camera_at(Vec3(0, -1, 0), Vec3(0, 1, 0)), s, {}, stats);
+  };
+  RenderStats black_stats, white_stats;
+  const Film black = render(false, &black_stats), white = render(true, &white_stats);
+  EXPECT_EQ(black_stats.shadow_rays, white_stats.shadow_rays);
+  EXPECT_LT(double(black_stats.rays), 0.95 * double(white_stats.rays));
+  double sum = 0.0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      float a[4], b[4];
+      black.pixel(x, y, a);
+      white.pixel(x, y, b);
+      for (int c = 0; c < 4; ++c) ASSERT_EQ(a[c], b[c]) << "pixel " << x << ", " << y;
+      sum += a[0];
+    }
+  EXPECT_GT(sum, 0.0);
 }
 
 TEST(AreaLight, EmissiveEnclosureLightsASphereToItsAlbedo) {

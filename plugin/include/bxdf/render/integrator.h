@@ -4,8 +4,9 @@
 // delta lights and delta lobes are counted by the one strategy that can find them. Lights are
 // not geometry: rays pass through them, collecting their radiance (as Cycles' lights_intersect).
 // A constant world is found by BSDF sampling alone (Cycles does not light-sample it). Shadow
-// rays leave from Cycles' terminator-offset point. Russian roulette from the fourth bounce on,
-// continuing with Cycles' probability √(max throughput).
+// rays leave from Cycles' terminator-offset point. Russian roulette as Cycles plays it: from
+// russian_roulette_depth + 1 scatterings on, with probability √(max throughput), rolled at the
+// hit the next ray finds once what that ray brought back has counted.
 #pragma once
 
 #include <array>
@@ -98,6 +99,11 @@ struct PreparedHit {
   bool scatters = false;      // the vertex scatters
   bool may_pass = false;      // it may pass the surface's Transparent closures
   bool runs_program = false;  // a node material whose program this hit needs
+  // Russian roulette, rolled by prepare() where the hit emits nothing (step() rolls it
+  // otherwise, after the emission has counted). Ended: only what the ray passed on its way
+  // here counts, and nothing else of the hit (sp, frame, ctx) is worked out.
+  bool roulette_rolled = false;
+  bool ended_by_roulette = false;
   ShadingContext ctx;         // the program's inputs (when runs_program); points at sp
 };
 
@@ -120,8 +126,10 @@ class PathTracer {
   void advance(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit* hit) const;
   // advance() in two steps, for batches: prepare the hit (s's next vertex; `hit` must outlive
   // `prepared`), run the program where prepared->runs_program (into `registers`), then advance
-  // with both. The same path as advance(s, sampler, stats, &hit).
-  void prepare(const PathState& s, const Hit& hit, PreparedHit* prepared) const;
+  // with both. The same path as advance(s, sampler, stats, &hit). Russian roulette is rolled
+  // here where the hit emits nothing, so that a path it ends costs no shading.
+  void prepare(const PathState& s, const PathSampler& sampler, const Hit& hit,
+               PreparedHit* prepared) const;
   void advance(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit& hit,
                const PreparedHit& prepared, const Vec3* registers) const;
   // The same as that advance(), but the vertex's shadow ray may stay pending (s.shadow): the

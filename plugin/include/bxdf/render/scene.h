@@ -110,6 +110,11 @@ class Scene {
   const std::vector<uint32_t>& hittable_lights() const { return hittable_lights_; }
   const std::vector<uint32_t>& wide_suns() const { return wide_suns_; }
   float bounding_radius() const { return bounding_radius_; }
+  // Whether a ray can bring light back by itself, before any shading where it lands: the world
+  // or a sun with an angle when it escapes, a light it passes, an emitting surface it hits.
+  // Where none can, a path's next ray counts only through the vertex it finds (committed
+  // scenes).
+  bool rays_find_light() const { return rays_find_light_; }
 
   // Closest hit in [ray.tmin, ray.tmax]; camera rays skip meshes invisible to the camera.
   bool intersect(const Ray& ray, Hit* hit, bool camera_ray = false) const;
@@ -233,6 +238,7 @@ class Scene {
   float bounding_radius_ = 0.0f;
   bool committed_ = false;
   bool signed_emission_ = false;
+  bool rays_find_light_ = true;
   std::unique_ptr<EmbreeState> embree_;
 };
 
