@@ -227,18 +227,24 @@ void PathTracer::prepare(const PathState& s, const PathSampler& sampler, const H
   prepared->may_pass = !ends_here && transparent_shadows_.transparent(material);
   prepared->runs_program = false;
   prepared->roulette_rolled = false;
-  prepared->ended_by_roulette = false;
+  prepared->ends_unshaded = false;
   const Material& mat = scene_.materials()[material];
   const MaterialGraph* graph = mat.graph.get();
-  // Russian roulette before any shading where the hit adds nothing of its own (no emission; a
-  // camera ray, which may see a holdout, is never rolled for): the same number step() would
-  // draw, so the same paths end, but an ended path costs no surface point and no program.
-  if (s.continuation < 1.0f && (prepared->scatters || prepared->may_pass) &&
-      mat.emission.is_black() && (!graph || graph->emission_is_constant())) {
-    prepared->roulette_rolled = true;
-    if (!(sampler.russian_roulette(s.vertex) < s.continuation)) {
-      prepared->ended_by_roulette = true;
+  // Where the hit adds nothing of its own (no emission; past the camera ray, which may see a
+  // holdout) a path that ends here ends before any shading: a vertex that neither scatters nor
+  // passes, and one where Russian roulette ends it (the same number step() would draw, so the
+  // same paths end). Neither costs a surface point or a program.
+  if (s.bounce > 0 && mat.emission.is_black() && (!graph || graph->emission_is_constant())) {
+    if (!prepared->scatters && !prepared->may_pass) {
+      prepared->ends_unshaded = true;
       return;
+    }
+    if (s.continuation < 1.0f) {
+      prepared->roulette_rolled = true;
+      if (!(sampler.russian_roulette(s.vertex) < s.continuation)) {
+        prepared->ends_unshaded = true;
+        return;
+      }
     }
   }
   SurfacePoint& sp = prepared->sp;
@@ -347,7 +353,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
     return end_path();
   }
   if (vertex == 0) result.alpha = 1.0f;
-  if (prepared->ended_by_roulette) return end_path();
+  if (prepared->ends_unshaded) return end_path();
   const Hit& hit = *found_hit;
 
   const SurfacePoint& sp = prepared->sp;  // turned towards the viewer (face_viewer)

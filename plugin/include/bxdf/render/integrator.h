@@ -100,10 +100,12 @@ struct PreparedHit {
   bool may_pass = false;      // it may pass the surface's Transparent closures
   bool runs_program = false;  // a node material whose program this hit needs
   // Russian roulette, rolled by prepare() where the hit emits nothing (step() rolls it
-  // otherwise, after the emission has counted). Ended: only what the ray passed on its way
-  // here counts, and nothing else of the hit (sp, frame, ctx) is worked out.
+  // otherwise, after the emission has counted).
   bool roulette_rolled = false;
-  bool ended_by_roulette = false;
+  // The path ends at this hit, which adds nothing (no emission; it neither scatters nor passes,
+  // or the roulette ended it): only what the ray passed on its way here counts, and nothing
+  // else of the hit (sp, frame, ctx) is worked out.
+  bool ends_unshaded = false;
   ShadingContext ctx;         // the program's inputs (when runs_program); points at sp
 };
 
