@@ -234,7 +234,7 @@ void PathTracer::prepare(const PathState& s, const PathSampler& sampler, const H
   // holdout) a path that ends here ends before any shading: a vertex that neither scatters nor
   // passes, and one where Russian roulette ends it (the same number step() would draw, so the
   // same paths end). Neither costs a surface point or a program.
-  if (s.bounce > 0 && mat.emission.is_black() && (!graph || graph->emission_is_constant())) {
+  if (s.bounce > 0 && !mat.may_emit()) {
     if (!prepared->scatters && !prepared->may_pass) {
       prepared->ends_unshaded = true;
       return;

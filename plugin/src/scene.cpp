@@ -529,9 +529,8 @@ void Scene::commit() {
       wide_suns_.push_back(static_cast<uint32_t>(i));
   }
   light_sampler_ = LightSampler(lights_, &world_, bounding_radius_);
-  const bool emits = std::any_of(materials_.begin(), materials_.end(), [](const Material& m) {
-    return !m.emission.is_black() || (m.graph && !m.graph->emission_is_constant());
-  });
+  const bool emits = std::any_of(materials_.begin(), materials_.end(),
+                                 [](const Material& m) { return m.may_emit(); });
   rays_find_light_ = !world_.is_black() || !hittable_lights_.empty() || !wide_suns_.empty() || emits;
   committed_ = true;
 }

@@ -49,6 +49,17 @@ RenderSettings small_settings() {
   return s;
 }
 
+// A closed Lambertian box around the origin (half-size 2), the camera's room in the roulette
+// tests; with `white_world` a world the box hides from every ray.
+void add_closed_lambertian_box(Scene& scene, const RGBValue& reflectance, bool white_world) {
+  ParamSet p;
+  p.set("reflectance", reflectance);
+  scene.add_material(Material{{make("lambertian", p)}, RGB(0.0f)});
+  const Mesh box = make_box(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0);
+  scene.add_mesh(box.view());
+  if (white_world) scene.set_world(RGB(1.0f));
+}
+
 }  // namespace
 
 TEST(Renderer, ImageDoesNotDependOnThreadCount) {
@@ -296,12 +307,7 @@ TEST(PixelFilter, BlackmanHarrisMatchesCyclesWindow) {
 TEST(Renderer, RussianRouletteStartsWhereCyclesDoesAndRollsAtTheHit) {
   const auto rays_per_path = [](bool white_world, int max_bounces, int depth) {
     Scene scene;
-    ParamSet quarter;
-    quarter.set("reflectance", RGBValue{0.25, 0.25, 0.25});
-    scene.add_material(Material{{make("lambertian", quarter)}, RGB(0.0f)});
-    const Mesh box = make_box(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0);
-    scene.add_mesh(box.view());
-    if (white_world) scene.set_world(RGB(1.0f));
+    add_closed_lambertian_box(scene, RGBValue{0.25, 0.25, 0.25}, white_world);
     scene.commit();
     EXPECT_EQ(scene.rays_find_light(), white_world);
     RenderSettings s;
@@ -354,13 +360,8 @@ TEST(Renderer, RussianRouletteStartsWhereCyclesDoesAndRollsAtTheHit) {
 TEST(Renderer, RaysThatCannotFindLightAreNotTracedAndChangeNoPixel) {
   const auto render = [](bool white_world, RenderStats* stats) {
     Scene scene;
-    ParamSet half;
-    half.set("reflectance", RGBValue{0.5, 0.6, 0.7});
-    scene.add_material(Material{{make("lambertian", half)}, RGB(0.0f)});
-    const Mesh box = make_box(Vec3(-2, -2, -2), Vec3(2, 2, 2), 0);
-    scene.add_mesh(box.view());
+    add_closed_lambertian_box(scene, RGBValue{0.5, 0.6, 0.7}, white_world);
     scene.add_light(point_light(Vec3(0.5f, 0.5f, 1.5f), RGB(10.0f)));
-    if (white_world) scene.set_world(RGB(1.0f));
     scene.commit();
     RenderSettings s;
     s.width = s.height = 16;

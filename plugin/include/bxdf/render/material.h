@@ -17,6 +17,10 @@ struct Material {
   // A node material: closures and emission evaluated per hit (components is then empty, and
   // emission holds the graph's emission when that is a constant, so that it is an area light).
   std::shared_ptr<const MaterialGraph> graph = nullptr;
+
+  // Whether a hit on it may add emitted light: a nonzero constant, or a graph's emission that
+  // varies per hit.
+  bool may_emit() const { return !emission.is_black() || (graph && !graph->emission_is_constant()); }
 };
 
 }  // namespace bxdf::render
