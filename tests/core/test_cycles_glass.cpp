@@ -8,6 +8,7 @@
 #include <string>
 
 #include "bxdf/microfacet/ggx.h"
+#include "bxdf/microfacet/refraction_cover.h"
 #include "bxdf/models/cycles_glass.h"
 #include "bxdf/registry.h"
 #include "bxdf/rng.h"
@@ -18,8 +19,17 @@ using namespace bxdf;
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
-// The share of refraction samples drawn cosine-weighted (cycles_glass.h).
-constexpr float kCover = CyclesRoughDielectric<microfacet::GGX>::kCosineCover;
+// The share of refraction samples a model drew cosine-weighted for wo (cycles_glass.h): the
+// cover table at the pair turned so that wo is above.
+float cover_share(const std::string& distribution, double roughness, double ior, const Vec3& wo) {
+  const cycles::CoverDistribution kind = distribution == "ggx"
+                                             ? cycles::CoverDistribution::kGGX
+                                             : cycles::CoverDistribution::kBeckmann;
+  const float ior_f = static_cast<float>(ior);
+  const float eta = wo.z >= 0.0f ? ior_f : 1.0f / ior_f;
+  return cycles::refraction_cover_share(kind, static_cast<float>(roughness * roughness), eta,
+                                        std::fabs(wo.z));
+}
 
 struct D3 {
   double x, y, z;
@@ -134,8 +144,9 @@ TEST(CyclesGlass, MatchesCyclesFormulaOnBothFacesIncludingUnphysicalPairs) {
             if (wo.z * wi.z < 0 && expected > 1e-4) {
               ++transmitted;
               // A pair no facet facing wo refracts into: Cycles evaluates it, and so do we.
+              const float cover = cover_share(distribution, roughness, ior, wo);
               unphysical += m->pdf(wo, wi) > 0 &&
-                            m->pdf(wo, wi) <= 1.0001f * kCover * cosine_hemisphere_pdf(std::fabs(wi.z));
+                            m->pdf(wo, wi) <= 1.0001f * cover * cosine_hemisphere_pdf(std::fabs(wi.z));
             }
           }
           EXPECT_GT(transmitted, 40);
@@ -171,8 +182,9 @@ TEST(CyclesGlass, FacetPdfIsCyclesPdfOnPhysicalPairs) {
     if (!(dot3(H, I) > 0) || !(dot3(H, L) < 0)) continue;
     const double cycles_pdf = ref.G1(I.z) * std::fabs(dot3(H, I) * dot3(H, L)) * ref.D(H.z) *
                               ior * ior / (I.z * ht2);
+    const double cover = cover_share("ggx", 0.5, ior, wo);
     const double facet_pdf =
-        (s.pdf - kCover * cosine_hemisphere_pdf(std::fabs(s.wi.z))) / (1.0 - kCover);
+        (s.pdf - cover * cosine_hemisphere_pdf(std::fabs(s.wi.z))) / (1.0 - cover);
     EXPECT_NEAR(facet_pdf, cycles_pdf, 2e-4 * cycles_pdf + 1e-6);
     ++checked;
   }

@@ -12,10 +12,11 @@
 // 0) the pair is turned over and the index inverted, as Cycles does on back faces.
 // Cycles' f is not zero for transmitted pairs that no facet facing wo refracts into (it does
 // not check sides), which visible-normal sampling never draws. So that sample_f covers all of
-// f, a share kCosineCover (1/4) of the refraction samples is cosine-distributed on the transmitted
-// side and the pdf is that mixture (Cycles reports its eval's pdf, which its sampler does not
-// realise: its images lose the light that only light sampling finds there, a finding of the
-// comparison harness).
+// f, a share of the refraction samples is cosine-distributed on the transmitted side and the
+// pdf is that mixture (Cycles reports its eval's pdf, which its sampler does not realise: its
+// images lose the light that only light sampling finds there, a finding of the comparison
+// harness). The share depends on α, η and cos θo (microfacet/refraction_cover.h): as small as
+// 0.001 where the facets cover nearly all of f, up to 0.9 where they cover little of it.
 // Cycles' singular cases become the delta form (CyclesSharpDielectric): the Sharp distribution,
 // αx·αy <= 1e-7, and a refraction index within 1e-4 of 1 (Cycles then samples a delta
 // pass-through; its eval stays a glossy lobe that its sampler never realises). A delta sample
@@ -23,9 +24,13 @@
 // either lobe is colour·(w_R + w_T).
 #pragma once
 
+#include <type_traits>
+
 #include "bxdf/bxdf.h"
+#include "bxdf/microfacet/beckmann.h"
 #include "bxdf/microfacet/cycles_lobes.h"
 #include "bxdf/microfacet/multiscatter_ggx.h"  // cycles_fresnel_dielectric_cos
+#include "bxdf/microfacet/refraction_cover.h"
 #include "bxdf/sampling.h"
 #include "bxdf/specular.h"
 
@@ -78,12 +83,13 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
       d.flags = kReflection | kGlossy;
     } else {
       const float v = std::min((u.x - p_reflect) / (1.0f - p_reflect), 0x1.fffffep-1f);
-      if (v < kCosineCover) {
-        wi = sample_cosine_hemisphere(Point2(v / kCosineCover, u.y));
+      const float cover = cover_share(c.wo.z, c.eta);
+      if (v < cover) {
+        wi = sample_cosine_hemisphere(Point2(v / cover, u.y));
         wi.z = -wi.z;
         d.ok = wi.z < 0.0f;
       } else {
-        const float v_facet = std::min((v - kCosineCover) / (1.0f - kCosineCover), 0x1.fffffep-1f);
+        const float v_facet = std::min((v - cover) / (1.0f - cover), 0x1.fffffep-1f);
         d.ok = refraction_.sample(c.wo, Point2(v_facet, u.y), c.eta, &wi);
       }
       d.flags = kTransmission | kGlossy;
@@ -98,13 +104,20 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
     const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
     if (c.wi.z > 0.0f) return p_reflect * reflection_.pdf(c.wo, c.wi);
-    const float cover = c.wi.z < 0.0f ? cosine_hemisphere_pdf(-c.wi.z) : 0.0f;
-    return (1.0f - p_reflect) * (kCosineCover * cover + (1.0f - kCosineCover) *
-                                                            refraction_.pdf(c.wo, c.wi, c.eta));
+    const float cosine = c.wi.z < 0.0f ? cosine_hemisphere_pdf(-c.wi.z) : 0.0f;
+    const float cover = cover_share(c.wo.z, c.eta);
+    return (1.0f - p_reflect) *
+           (cover * cosine + (1.0f - cover) * refraction_.pdf(c.wo, c.wi, c.eta));
   }
 
-  // The share of refraction samples drawn cosine-weighted (see the file comment).
-  static constexpr float kCosineCover = 0.25f;
+  // The share of refraction samples drawn cosine-weighted (see the file comment), for wo
+  // above the surface with relative index eta.
+  float cover_share(float cos_o, float eta) const {
+    constexpr cycles::CoverDistribution kind = std::is_same_v<Distribution, microfacet::Beckmann>
+                                                   ? cycles::CoverDistribution::kBeckmann
+                                                   : cycles::CoverDistribution::kGGX;
+    return cycles::refraction_cover_share(kind, refraction_.distribution.alpha_x, eta, cos_o);
+  }
 
  private:
   CyclesDielectricNode node_;

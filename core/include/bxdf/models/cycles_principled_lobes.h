@@ -11,6 +11,7 @@
 #include "bxdf/math.h"
 #include "bxdf/microfacet/ggx.h"
 #include "bxdf/microfacet/multiscatter_ggx.h"
+#include "bxdf/microfacet/refraction_cover.h"
 #include "bxdf/sampling.h"
 #include "bxdf/spectrum.h"
 
@@ -137,14 +138,18 @@ struct GTR1Clearcoat {
 // with no check of which side the microfacet faces (pbrt-style code returns 0 there).
 // Visible-normal sampling only produces facets that face wo, so it cannot reach the pairs whose
 // half vector faces away, where this f is still > 0 (13% of the transmitted energy at θo 85°
-// for α 0.16): a share kCosineShare of the samples is drawn cosine-weighted below the surface,
-// so that the density covers every pair f does and a sampled estimate converges to ∫ f.
+// for α 0.16): a share of the samples, cover_share(), is drawn cosine-weighted below the
+// surface, so that the density covers every pair f does and a sampled estimate converges to
+// ∫ f; the share that keeps its variance least depends on α, η and cos θo
+// (microfacet/refraction_cover.h).
 struct GGXRefraction {
-  static constexpr float kCosineShare = 0.1f;
 
   microfacet::GGX ggx;
   float eta = 1.5f;
 
+  float cover_share(float cos_o) const {
+    return refraction_cover_share(CoverDistribution::kGGX, ggx.alpha_x, eta, cos_o);
+  }
   float f(const Vec3& wo, const Vec3& wi) const {
     if (!(wo.z > 0.0f) || !(wi.z < 0.0f)) return 0.0f;
     const Vec3 ht = -(wi * eta + wo);
@@ -159,22 +164,24 @@ struct GGXRefraction {
   }
   float density(const Vec3& wo, const Vec3& wi) const {
     if (!(wo.z > 0.0f) || !(wi.z < 0.0f)) return 0.0f;
-    const float cosine = kCosineShare * -wi.z * kInvPi;
+    const float share = cover_share(wo.z);
+    const float cosine = share * -wi.z * kInvPi;
     Vec3 h = wo + wi * eta;
     if (!normalize_direction(h)) return cosine;
     if (h.z < 0.0f) h = -h;
     const float wo_h = dot(wo, h), wi_h = dot(wi, h);
     if (!(wo_h > 0.0f) || !(wi_h < 0.0f)) return cosine;
     const float denom = wo_h + eta * wi_h;
-    return (1.0f - kCosineShare) * ggx.pdf_wh(wo, h) * eta * eta * -wi_h / (denom * denom) + cosine;
+    return (1.0f - share) * ggx.pdf_wh(wo, h) * eta * eta * -wi_h / (denom * denom) + cosine;
   }
   bool sample(const Vec3& wo, Point2 u, Vec3* wi) const {
-    if (u.x < kCosineShare) {
-      *wi = sample_cosine_hemisphere(Point2(std::min(u.x / kCosineShare, 0x1.fffffep-1f), u.y));
+    const float share = cover_share(wo.z);
+    if (u.x < share) {
+      *wi = sample_cosine_hemisphere(Point2(std::min(u.x / share, 0x1.fffffep-1f), u.y));
       wi->z = -wi->z;
       return wi->z < 0.0f;
     }
-    u.x = std::min((u.x - kCosineShare) / (1.0f - kCosineShare), 0x1.fffffep-1f);
+    u.x = std::min((u.x - share) / (1.0f - share), 0x1.fffffep-1f);
     const Vec3 m = ggx.sample_wh(wo, u);
     if (!(dot(wo, m) > 0.0f)) return false;
     if (!refract(wo, m, 1.0f / eta, wi)) return false;
