@@ -49,6 +49,15 @@ class NodeMaterials:
     def _translation(self, material):
         return next((t for _, t in self.translations if t.material == material), None)
 
+    def needs_tangents(self, materials):
+        """Whether the graph of any of `materials` has a Normal Map node, whose tangents
+        mesh_attributes computes on the mesh (calc_tangents)."""
+        for material in materials:
+            translation = self._translation(material) if material is not None else None
+            if translation is not None and any(n["op"] == "normal_map" for n in translation.graph.nodes):
+                return True
+        return False
+
     def mesh_attributes(self, mesh, data, materials):
         """UV maps, tangents and texture space that the graphs of `materials` read on `mesh`
         (keys of the module docstring, with "uv_layers" keyed by graph UV map name until

@@ -152,6 +152,51 @@ def test_triangles_and_normals_match_blenders_own_for_every_shading_case():
             np.testing.assert_allclose(_corner_normals(data), normals, atol=1e-6, err_msg=f"{name} {case}")
 
 
+def test_meshes_are_read_in_place_where_reading_changes_nothing_and_equal_a_copy():
+    """A mesh object's evaluated mesh is read as it is (its cached normals kept, as Cycles reads
+    it); auto smooth, custom normals and non-mesh objects go through a to_mesh() copy. Either
+    way the arrays are those of the copy, modifiers applied."""
+    collection = bpy.context.scene.collection
+    ngon = _object("ngon_in_place", [(0, 0, 0), (2, 0, 0), (2, 2, 0), (1, 0.5, 0), (0, 2, 0)],
+                   [(0, 1, 2, 3, 4)], collection)
+    subdivided = _object("subsurf_in_place", CUBE_VERTS, CUBE_FACES, collection)
+    subdivided.modifiers.new("subsurf", "SUBSURF").levels = 2
+    for polygon in subdivided.data.polygons:
+        polygon.use_smooth = polygon.index % 2 == 0
+    auto_smooth = _object("auto_smooth_copied", CUBE_VERTS, CUBE_FACES, collection)
+    auto_smooth.data.use_auto_smooth = True
+    curve_data = bpy.data.curves.new("text_copied", "FONT")
+    text = bpy.data.objects.new("text_copied", curve_data)
+    collection.objects.link(text)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    nodes = export.node_materials.NodeMaterials()
+    expected_copy = {"ngon_in_place": False, "subsurf_in_place": False,
+                     "auto_smooth_copied": True, "text_copied": True}
+    try:
+        for name, copied_expected in expected_copy.items():
+            evaluated = bpy.data.objects[name].evaluated_get(depsgraph)
+            copy = evaluated.to_mesh()
+            reference = export.mesh_arrays(copy)
+            evaluated.to_mesh_clear()
+            mesh, copied = export._readable_mesh(evaluated, [], nodes)
+            try:
+                assert copied == copied_expected, name
+                got = export.mesh_arrays(mesh)
+            finally:
+                if copied:
+                    evaluated.to_mesh_clear()
+            for key, value in reference.items():
+                if value is None:
+                    assert got[key] is None, (name, key)
+                else:
+                    np.testing.assert_array_equal(got[key], value, err_msg=f"{name} {key}")
+        subsurf = bpy.data.objects["subsurf_in_place"].evaluated_get(depsgraph)
+        assert len(export._readable_mesh(subsurf, [], nodes)[0].polygons) == 6 * 16  # modifiers applied
+    finally:
+        for name in expected_copy:
+            bpy.data.objects.remove(bpy.data.objects[name])
+
+
 def test_material_indices_point_into_the_scene_material_table(scene):
     data = _export()
     table = [m["name"] for m in data["materials"]]
