@@ -1,5 +1,6 @@
 #include "bxdf/render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -85,6 +86,35 @@ Camera::Camera(const CameraSettings& s, int width, int height) {
   if (!normalize_direction(right_) || !normalize_direction(up_) || !normalize_direction(back_))
     throw ParameterError("camera matrix has a zero axis (one of its first three columns is 0)");
   forward_ = -back_;
+}
+
+void Camera::generate_rays(const float* x, const float* y, int n, Ray* out) const {
+  if (orthographic_) {
+    for (int i = 0; i < n; ++i) out[i] = generate_ray(x[i], y[i]);
+    return;
+  }
+  constexpr int kBlock = 64;
+  float dx[kBlock], dy[kBlock], dz[kBlock], len[kBlock];
+  for (int first = 0; first < n; first += kBlock) {
+    const int m = std::min(kBlock, n - first);
+    // The operations of generate_ray in its order: d = right·px + up·py − back, |d|, d·(1/|d|).
+    for (int i = 0; i < m; ++i) {
+      const float px = (x[first + i] * inv_width_ - 0.5f) * plane_width_ + shift_x_;
+      const float py = (0.5f - y[first + i] * inv_height_) * plane_height_ + shift_y_;
+      dx[i] = right_.x * px + up_.x * py - back_.x;
+      dy[i] = right_.y * px + up_.y * py - back_.y;
+      dz[i] = right_.z * px + up_.z * py - back_.z;
+      len[i] = std::sqrt(dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
+    }
+    for (int i = 0; i < m; ++i) {
+      const float inv = 1.0f / len[i];
+      Ray& r = out[first + i];
+      r.origin = eye_;
+      r.dir = Vec3(dx[i] * inv, dy[i] * inv, dz[i] * inv);
+      r.tmin = clip_start_ * len[i];
+      r.tmax = clip_end_ * len[i];
+    }
+  }
 }
 
 }  // namespace bxdf::render

@@ -105,7 +105,16 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
     // Traced in batches of consecutive samples (a pixel's, then the next pixel's; PathBatch);
     // the film takes the results in sample order.
     PathBatch& batch = *batches.local();
+    // A batch's camera samples are gathered first and their rays made together
+    // (Camera::generate_rays), then traced.
+    std::array<PathBatch::Sample, PathBatch::kSize> pending;
+    std::array<float, PathBatch::kSize> film_x, film_y;
+    std::array<Ray, PathBatch::kSize> camera_rays;
+    int n_pending = 0;
     const auto trace_batch = [&] {
+      camera.generate_rays(film_x.data(), film_y.data(), n_pending, camera_rays.data());
+      for (int k = 0; k < n_pending; ++k) batch.add(pending[size_t(k)], camera_rays[size_t(k)]);
+      n_pending = 0;
       batch.trace(local);
       for (int k = 0; k < batch.size(); ++k) {
         const PathBatch::Sample& c = batch.sample(k);
@@ -124,14 +133,15 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
         for (int s = first_sample; s < first_sample + count; ++s) {
           const PathSampler sampler(pixel_seed, static_cast<uint32_t>(s));
           const Point2 offset = filter.sample(sampler.filter());
-          batch.add({x, y, pixel_seed, static_cast<uint32_t>(s)},
-                    camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
-                                        static_cast<float>(y) + 0.5f + offset.y));
-          if (batch.full()) trace_batch();
+          const size_t k = size_t(n_pending++);
+          pending[k] = {x, y, pixel_seed, static_cast<uint32_t>(s)};
+          film_x[k] = static_cast<float>(x) + 0.5f + offset.x;
+          film_y[k] = static_cast<float>(y) + 0.5f + offset.y;
+          if (n_pending == PathBatch::kSize) trace_batch();
         }
       }
     }
-    if (batch.size() > 0) trace_batch();
+    if (n_pending > 0) trace_batch();
     rays += local.rays;
     shadow_rays += local.shadow_rays;
     rejected += local.rejected;

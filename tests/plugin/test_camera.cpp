@@ -152,3 +152,40 @@ TEST(Camera, RefusesANonPositiveOrthoScale) {
     }
   }
 }
+
+TEST(Camera, RaysMadeTogetherAreTheRaysMadeOneByOne) {
+  // Perspective (shifted, tilted, clipped) and orthographic; 150 positions cross the batch's
+  // blocks of 64 and include the image's corners and points past its edges.
+  for (const Projection projection : {Projection::Perspective, Projection::Orthographic}) {
+    CameraSettings s;
+    s.projection = projection;
+    s.lens_mm = 35.0f;
+    s.shift_x = 0.1f;
+    s.shift_y = -0.05f;
+    s.clip_start = 0.3f;
+    s.clip_end = 40.0f;
+    s.camera_to_world = look_at(Vec3(1, -5, 2), Vec3(0.2f, 0, 0.7f), Vec3(0, 0, 1));
+    const Camera c(s, 96, 64);
+    constexpr int kN = 150;
+    float x[kN], y[kN];
+    for (int i = 0; i < kN; ++i) {
+      x[i] = -1.0f + 98.0f * static_cast<float>((i * 37) % kN) / kN;
+      y[i] = -1.0f + 66.0f * static_cast<float>((i * 61) % kN) / kN;
+    }
+    x[0] = 0.0f, y[0] = 0.0f, x[1] = 96.0f, y[1] = 64.0f;
+    Ray together[kN];
+    c.generate_rays(x, y, kN, together);
+    for (int i = 0; i < kN; ++i) {
+      const Ray one = c.generate_ray(x[i], y[i]);
+      SCOPED_TRACE(testing::Message() << "projection " << int(projection) << " i " << i);
+      EXPECT_EQ(together[i].origin.x, one.origin.x);
+      EXPECT_EQ(together[i].origin.y, one.origin.y);
+      EXPECT_EQ(together[i].origin.z, one.origin.z);
+      EXPECT_EQ(together[i].dir.x, one.dir.x);
+      EXPECT_EQ(together[i].dir.y, one.dir.y);
+      EXPECT_EQ(together[i].dir.z, one.dir.z);
+      EXPECT_EQ(together[i].tmin, one.tmin);
+      EXPECT_EQ(together[i].tmax, one.tmax);
+    }
+  }
+}

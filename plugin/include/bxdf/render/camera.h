@@ -61,6 +61,11 @@ class Camera {
     return r;
   }
 
+  // generate_ray for n raster positions at once, bit for bit: the perspective directions are
+  // made and normalised in a loop over arrays, which the compiler turns into vector square
+  // roots and divisions (one at a time, their latency was most of a camera sample's setup).
+  void generate_rays(const float* x, const float* y, int n, Ray* out) const;
+
   const Vec3& position() const { return eye_; }
   const Vec3& forward() const { return forward_; }
   bool orthographic() const { return orthographic_; }
