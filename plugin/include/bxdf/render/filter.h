@@ -3,6 +3,7 @@
 // with weight 1 for its own pixel, so tiles never write to each other's pixels.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -47,11 +48,14 @@ class PixelFilter {
 
  private:
   // Inverse CDF of the 1D filter over [-radius, radius], tabulated and linearly interpolated.
+  // In int, not size_t: x86 converts between float and unsigned 64-bit numbers with branches and
+  // shifts, which made this lookup the larger part of a camera sample's setup.
   float sample_table(float u) const {
-    const float x = u * static_cast<float>(inverse_cdf_.size() - 1);
-    const size_t i = std::min(static_cast<size_t>(x), inverse_cdf_.size() - 2);
+    const int last = static_cast<int>(inverse_cdf_.size()) - 1;
+    const float x = u * static_cast<float>(last);
+    const int i = std::clamp(static_cast<int>(x), 0, last - 1);
     const float f = x - static_cast<float>(i);
-    return inverse_cdf_[i] * (1.0f - f) + inverse_cdf_[i + 1] * f;
+    return inverse_cdf_[size_t(i)] * (1.0f - f) + inverse_cdf_[size_t(i) + 1] * f;
   }
 
   FilterType type_;
