@@ -197,6 +197,27 @@ def test_meshes_are_read_in_place_where_reading_changes_nothing_and_equal_a_copy
             bpy.data.objects.remove(bpy.data.objects[name])
 
 
+def test_an_object_in_edit_mode_is_read_from_a_copy():
+    """Its evaluated mesh says it is in edit mode (Cycles copies it too, so that its layers are
+    filled); the arrays are the copy's."""
+    obj = _object("edited_cube", CUBE_VERTS, CUBE_FACES, bpy.context.scene.collection)
+    bpy.context.view_layer.objects.active = obj
+    bpy.ops.object.mode_set(mode="EDIT")
+    try:
+        evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get())
+        reference = export.mesh_arrays(evaluated.to_mesh())
+        evaluated.to_mesh_clear()
+        mesh, copied = export._readable_mesh(evaluated, [], export.node_materials.NodeMaterials())
+        try:
+            assert copied
+            np.testing.assert_array_equal(export.mesh_arrays(mesh)["triangles"], reference["triangles"])
+        finally:
+            evaluated.to_mesh_clear()
+    finally:
+        bpy.ops.object.mode_set(mode="OBJECT")
+        bpy.data.objects.remove(obj)
+
+
 def test_material_indices_point_into_the_scene_material_table(scene):
     data = _export()
     table = [m["name"] for m in data["materials"]]
