@@ -21,6 +21,11 @@ from . import nodes
 from .nodes import closure_budget, registry_params
 
 
+def _tangent_maps(translation):
+    """The graph's indices of the UV maps whose tangents its Normal Map nodes read."""
+    return {n.get("map", 0) for n in translation.graph.nodes if n["op"] == "normal_map"}
+
+
 def _maps_read(translation):
     """The graph's indices of the UV maps its nodes read (UV coordinates, normal-map tangents)."""
     return {n.get("map", 0) for n in translation.graph.nodes if n["op"] in ("uv", "normal_map")}
@@ -54,7 +59,7 @@ class NodeMaterials:
         mesh_attributes computes on the mesh (calc_tangents)."""
         for material in materials:
             translation = self._translation(material) if material is not None else None
-            if translation is not None and any(n["op"] == "normal_map" for n in translation.graph.nodes):
+            if translation is not None and _tangent_maps(translation):
                 return True
         return False
 
@@ -69,7 +74,7 @@ class NodeMaterials:
             translation = self._translation(material) if material is not None else None
             if translation is None or corners is None:
                 continue
-            tangent_maps = {n.get("map", 0) for n in translation.graph.nodes if n["op"] == "normal_map"}
+            tangent_maps = _tangent_maps(translation)
             read = _maps_read(translation)
             for index, name in enumerate(translation.uv_maps):
                 if index not in read:

@@ -6,7 +6,8 @@
 // and its second moment is about A/(1 − s) + B/s, with A the facet sampler's own second moment
 // and B = ∫ over the uncovered pairs of (f |cos θi|)² / p_cos. The share that minimises it,
 // s* = √B / (√A + √B), runs from ~0 (smooth lobes near normal incidence, where the facets cover
-// nearly all of f) to 0.9 (rough, grazing, η near 1, where most of f is on uncovered pairs).
+// nearly all of f; kept at 0.01 or more) to 0.9 (rough, grazing, η near 1, where most of f is
+// on uncovered pairs).
 // A fixed share of 1/4 cost the harness's glass room 1.3x the variance per rough refraction.
 //
 // refraction_cover_table.inc holds s* over √α, ln η and cos θo for GGX and Beckmann, made by

@@ -16,7 +16,7 @@
 // pdf is that mixture (Cycles reports its eval's pdf, which its sampler does not realise: its
 // images lose the light that only light sampling finds there, a finding of the comparison
 // harness). The share depends on α, η and cos θo (microfacet/refraction_cover.h): as small as
-// 0.001 where the facets cover nearly all of f, up to 0.9 where they cover little of it.
+// 0.01 where the facets cover nearly all of f, up to 0.9 where they cover little of it.
 // Cycles' singular cases become the delta form (CyclesSharpDielectric): the Sharp distribution,
 // αx·αy <= 1e-7, and a refraction index within 1e-4 of 1 (Cycles then samples a delta
 // pass-through; its eval stays a glossy lobe that its sampler never realises). A delta sample
