@@ -69,7 +69,7 @@ PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
 }
 
 RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf,
-                                 const Vec3& wo, const Vec3& viewer_n,
+                                 const Vec3& wo, LightReceiver& receiver,
                                  Point2 u, int transparent_bounces,
                                  PathStats& stats, PendingShadow* deferred) const {
   const LightSampler& sampler = scene_.light_sampler();
@@ -77,7 +77,8 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
   const auto& lights = scene_.lights();
   float select = 0.0f;
   float u1 = 0.0f;
-  const size_t index = sampler.sample(u.x, &select, &u1);
+  const size_t index = sampler.sample(receiver, u.x, &select, &u1);
+  if (!(select > 0.0f)) return RGB(0.0f);  // no light can reach this point
   const float u2 = u.y;
   const Light* light = index < lights.size() ? &lights[index] : nullptr;
   // Made in place (initialised by the call, not assigned from a temporary): copying the
@@ -109,7 +110,7 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
   const TerminatorOffsets& terminator = scene_.terminator(hit.mesh);
   // The shading offset dims the viewer's side only: light through a transmissive surface is not
   // rescaled (Cycles' bsdf_eval).
-  const float cos_in = dot(ls.wi, viewer_n);
+  const float cos_in = dot(ls.wi, receiver.n);
   if (cos_in >= 0.0f) f *= shading_offset_factor(cos_in, terminator.shading);
 
   if (!light || light->visibility.cast_shadow) {
@@ -162,7 +163,7 @@ LightSample PathTracer::world_light_sample(float u1, float u2) const {
 }
 
 RGB PathTracer::lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bool count_fully,
-                                 float bsdf_pdf) const {
+                                 float bsdf_pdf, const LightReceiver& from) const {
   RGB L(0.0f);
   const auto& lights = scene_.lights();
   for (uint32_t i : scene_.hittable_lights()) {
@@ -174,7 +175,7 @@ RGB PathTracer::lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bo
     if (count_fully) {
       L += h.radiance;
     } else {
-      const float light_pdf = h.pdf * scene_.light_sampler().probability(i);
+      const float light_pdf = h.pdf * scene_.light_sampler().probability(from, i);
       L += h.radiance * power_heuristic(1.0f, bsdf_pdf, 1.0f, light_pdf);
     }
   }
@@ -328,7 +329,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   Ray& ray = s.ray;
   bool& specular_bounce = s.specular_bounce;
   float& prev_pdf = s.prev_pdf;
-  Vec3& prev_p = s.prev_p;
+  LightReceiver& prev = s.prev;
   int& bounce = s.bounce;
   int& transparent_bounces = s.transparent_bounces;
   int& vertex = s.vertex;
@@ -342,7 +343,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   const bool count_fully = camera_ray || specular_bounce;
   const bool found = found_hit != nullptr;
   L += beta * lights_along_ray(ray, found ? found_hit->t : kInfinity, camera_ray, count_fully,
-                               prev_pdf);
+                               prev_pdf, prev);
   if (!found) {
     // Escaped: the world and the suns with an angle. Counted in full where light sampling
     // could not have found them (camera rays, delta bounces), else weighted against it.
@@ -361,6 +362,9 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   const Material& mat = scene_.materials()[sp.material];
   const bool transmissive = scene_.transmissive(sp.material);
   const Vec3& viewer_n = prepared->viewer_n;
+  // Where next-event estimation picks its light, and where a BSDF ray from here weighs the
+  // light it finds.
+  LightReceiver receiver{sp.p, viewer_n, transmissive};
   BSDF bsdf(prepared->frame, transmissive ? sp.ng : prepared->frame.n);
   // Cosine lobes sample only what can leave an opaque smooth surface: on a smooth sphere in a
   // furnace the samples lost below the triangle's plane were all of the noise. (An opaque
@@ -387,8 +391,8 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
       // Weighted against light sampling of the mesh's light (constant or textured).
       const int li = scene_.area_light_of(hit);
       const float lp = li < 0 ? 0.0f
-                              : scene_.light_sampler().probability(size_t(li)) *
-                                    mesh_light_pdf(lights[size_t(li)], prev_p, sp.p, sp.ng);
+                              : scene_.light_sampler().probability(prev, size_t(li)) *
+                                    mesh_light_pdf(lights[size_t(li)], prev.p, sp.p, sp.ng);
       L += beta * emitted * power_heuristic(1.0f, prev_pdf, 1.0f, lp);
     }
   }
@@ -426,7 +430,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   if (bsdf.num_components() == 0) return end_path();
 
   if (bsdf.has_non_delta()) {
-    const RGB nee = sample_one_light(hit, sp, bsdf, wo, viewer_n, sampler.light(vertex),
+    const RGB nee = sample_one_light(hit, sp, bsdf, wo, receiver, sampler.light(vertex),
                                      transparent_bounces, stats, &s.shadow);
     if (s.shadow.active) s.shadow.contribution = beta * nee;  // added once the ray is tested
     else L += beta * nee;
@@ -456,7 +460,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   }
   specular_bounce = bs.is_delta();
   prev_pdf = bs.pdf;
-  prev_p = sp.p;
+  prev = receiver;
   ray.origin = offset_origin(sp.p, sp.ng, bs.wi);
   ray.dir = bs.wi;
   ray.tmin = 0.0f;

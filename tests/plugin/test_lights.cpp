@@ -196,6 +196,95 @@ TEST(Lights, SamplerRemapsTheNumberWithinThePickedLight) {
 
 namespace {
 
+// Four local lights around the origin: two area lights facing down, one facing up, a point.
+std::vector<Light> spread_lights() {
+  return {area_light_from_power(Vec3(-2, 0, 1), Vec3(0.5f, 0, 0), Vec3(0, 0.5f, 0),
+                                Vec3(0, 0, -1), AreaShape::Rectangle, 40.0f, RGB(1.0f)),
+          area_light_from_power(Vec3(2, 1, 1.5f), Vec3(1, 0, 0), Vec3(0, 0.4f, 0),
+                                Vec3(0.3f, 0, -1), AreaShape::Ellipse, 40.0f, RGB(1.0f)),
+          area_light_from_power(Vec3(0, 0, 0.5f), Vec3(0.3f, 0, 0), Vec3(0, 0.3f, 0),
+                                Vec3(0, 0, 1), AreaShape::Ellipse, 40.0f, RGB(1.0f)),
+          point_light_from_power(Vec3(0, 3, 2), 400.0f, RGB(1.0f), 0.1f)};
+}
+
+}  // namespace
+
+TEST(Lights, SpatialSamplerPicksEachLightWithTheProbabilityItReports) {
+  // At a shading point the local lights' share is split by importance; sample() must pick
+  // each entry as often as probability(r, i) says (the MIS weight of a BSDF ray that finds
+  // it), report that same number, and the probabilities must add up to 1.
+  const std::vector<Light> lights = spread_lights();
+  const LightSampler sampler(lights, nullptr, 5.0f);
+  ASSERT_TRUE(sampler.spatial());
+  const LightReceiver receivers[] = {{Vec3(-1.8f, 0.1f, 0), Vec3(0, 0, 1), false},
+                                     {Vec3(1.5f, 0.5f, 0), Vec3(0, 0, 1), false},
+                                     {Vec3(0, 2.0f, 0.3f), Vec3(0, -1, 0), true},
+                                     {Vec3(0.2f, 0, 1.0f), Vec3(1, 0, 0), false}};
+  for (const LightReceiver& r : receivers) {
+    double total = 0.0;
+    for (size_t i = 0; i < sampler.size(); ++i) total += sampler.probability(r, i);
+    EXPECT_NEAR(total, 1.0, 1e-5);
+    const int n = 200000;
+    std::vector<int> counts(sampler.size(), 0);
+    for (int j = 0; j < n; ++j) {
+      LightReceiver at = r;
+      float p = 0.0f, remapped = -1.0f;
+      const size_t i = sampler.sample(at, (j + 0.5f) / n, &p, &remapped);
+      ASSERT_LT(i, sampler.size());
+      ASSERT_GE(remapped, 0.0f);
+      ASSERT_LT(remapped, 1.0f);
+      // The same bits from the receiver sample() normalised and from a fresh one.
+      ASSERT_EQ(p, sampler.probability(at, i));
+      ASSERT_EQ(p, sampler.probability(r, i));
+      ++counts[i];
+    }
+    for (size_t i = 0; i < sampler.size(); ++i)
+      EXPECT_NEAR(counts[i] / double(n), sampler.probability(r, i), 2e-5) << i;
+  }
+}
+
+TEST(Lights, SpatialSamplerFavoursNearLightsAndNeverPicksOneFromBehind) {
+  const std::vector<Light> lights = spread_lights();
+  const LightSampler sampler(lights, nullptr, 5.0f);
+  // Under the first light the first gets most samples (the point light, ten times as
+  // powerful but over five times as far, under half its global share); the third (facing up,
+  // above r) none.
+  const LightReceiver under_first{Vec3(-2, 0, 0.3f), Vec3(0, 0, 1), false};
+  EXPECT_GT(sampler.probability(under_first, 0), 0.7f);
+  EXPECT_LT(sampler.probability(under_first, 3), 0.5f * sampler.probability(3));
+  EXPECT_EQ(sampler.probability(under_first, 2), 0.0f);
+  // Every light that can reach r keeps at least its part of the power share, whatever the
+  // bounds say (here r's normal faces away from all of them).
+  const LightReceiver facing_away{Vec3(0, 0, 0.8f), Vec3(0, 0, -1), false};
+  for (size_t i : {size_t(0), size_t(1), size_t(3)})
+    EXPECT_GE(sampler.probability(facing_away, i),
+              0.99f * LightSampler::kPowerShare * sampler.probability(i)) << i;
+  // Behind both downward lights' planes and the upward one's: only the point light is left.
+  std::vector<Light> one_sided = {lights[0], lights[1], lights[3]};
+  one_sided[2] = area_light_from_power(Vec3(0, 0, 0.5f), Vec3(0.3f, 0, 0), Vec3(0, 0.3f, 0),
+                                       Vec3(0, 0, -1), AreaShape::Ellipse, 40.0f, RGB(1.0f));
+  const LightSampler above_all(one_sided, nullptr, 5.0f);
+  LightReceiver high{Vec3(0, 0, 3), Vec3(0, 0, 1), false};
+  float p = 1.0f;
+  EXPECT_EQ(above_all.sample(high, 0.5f, &p), above_all.size());  // nothing to pick
+  EXPECT_EQ(p, 0.0f);
+  for (size_t i = 0; i < above_all.size(); ++i) EXPECT_EQ(above_all.probability(high, i), 0.0f);
+  // A NaN normal gives finite probabilities that still add up to 1.
+  const LightReceiver nan_normal{Vec3(0, 0, 0), Vec3(NAN, 0, 0), false};
+  double total = 0.0;
+  for (size_t i = 0; i < sampler.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(sampler.probability(nan_normal, i)));
+    total += sampler.probability(nan_normal, i);
+  }
+  EXPECT_NEAR(total, 1.0, 1e-5);
+  // One local light, or more than kMaxSpatialLights: the global distribution everywhere.
+  EXPECT_FALSE(LightSampler({lights[0]}, nullptr, 5.0f).spatial());
+  EXPECT_FALSE(LightSampler(std::vector<Light>(LightSampler::kMaxSpatialLights + 1, lights[3]),
+                            nullptr, 5.0f).spatial());
+}
+
+namespace {
+
 // A white Lambertian floor (z = 0, 20 m wide) seen from straight above by a narrow camera.
 struct Floor {
   Scene scene;
@@ -239,6 +328,28 @@ TEST(Lights, RenderedAreaLightMatchesQuadratureThroughBothStrategies) {
   f.scene.add_light(l);
   const double e = quadrature_irradiance(l.radiance.r, h, 1.5, 1.0,
                                          [](double x, double y) { return x * x + y * y <= 1.0; });
+  EXPECT_NEAR(f.mean(), 0.8 / M_PI * e, 0.01 * 0.8 / M_PI * e);
+}
+
+TEST(Lights, RenderedLightsPickedByImportanceAddUpToTheirIrradiance) {
+  // Three local lights (so light selection depends on the shading point) over the floor, and
+  // one facing away below the camera: MIS with the per-point probabilities must still add up to
+  // the sum of the irradiances.
+  Floor f;
+  const Light ellipse = area_light_from_power(Vec3(0, 0, 1), Vec3(1.5f, 0, 0), Vec3(0, 1, 0),
+                                              Vec3(0, 0, -1), AreaShape::Ellipse, 50.0f, RGB(1.0f));
+  const Light square = area_light_from_power(Vec3(0, 0, 2), Vec3(2, 0, 0), Vec3(0, 2, 0),
+                                             Vec3(0, 0, -1), AreaShape::Rectangle, 80.0f, RGB(1.0f));
+  const Light point = point_light_from_power(Vec3(0, 0, 3), 300.0f, RGB(1.0f), 0.05f);
+  const Light away = area_light_from_power(Vec3(0, 0, 2.5f), Vec3(1, 0, 0), Vec3(0, 1, 0),
+                                           Vec3(0, 0, 1), AreaShape::Rectangle, 100.0f, RGB(1.0f));
+  for (const Light& l : {ellipse, square, point, away}) f.scene.add_light(l);
+  const auto disk = [](double x, double y) { return x * x + y * y <= 1.0; };
+  const auto all = [](double, double) { return true; };
+  // The point light's sphere of radius 0.05 at height 3: E = I / h² within 0.03%.
+  const double e = quadrature_irradiance(ellipse.radiance.r, 1.0, 1.5, 1.0, disk) +
+                   quadrature_irradiance(square.radiance.r, 2.0, 2.0, 2.0, all) +
+                   point.intensity.r / 9.0;
   EXPECT_NEAR(f.mean(), 0.8 / M_PI * e, 0.01 * 0.8 / M_PI * e);
 }
 

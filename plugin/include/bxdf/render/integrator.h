@@ -1,5 +1,6 @@
 // The path tracer (pbrt's PathIntegrator with one-light next-event estimation): at each vertex
-// one light is picked in proportion to its power (light_sampler.h) and sampled, the BSDF is
+// one light is picked (light_sampler.h: by power, and among a few local lights by how much
+// each can give the point) and sampled, the BSDF is
 // sampled to continue the path, and both strategies are combined with the power heuristic;
 // delta lights and delta lobes are counted by the one strategy that can find them. Lights are
 // not geometry: rays pass through them, collecting their radiance (as Cycles' lights_intersect).
@@ -66,7 +67,9 @@ struct PathState {
   float eta_scale = 1.0f;  // product of (η_wi/η_wo)² over refractions: undoes radiance scaling
   bool specular_bounce = false;
   float prev_pdf = 0.0f;   // BSDF pdf of the direction that led here (for MIS)
-  Vec3 prev_p;
+  // The vertex that scattered the ray, as light selection saw it there (the light a BSDF ray
+  // finds is weighed with the probability that vertex would have picked it with).
+  LightReceiver prev;
   // Cycles counts a pass through a Transparent BSDF apart from the bounces (path_state_next:
   // LABEL_TRANSPARENT): it uses no bounce, keeps the path's flags (a camera ray stays one), its
   // MIS pdf and its ray origin (only tmin moves on), and the path ends at the surface after
@@ -157,20 +160,22 @@ class PathTracer {
             const PreparedHit* prepared, const Vec3* registers) const;
   // Tests s's pending shadow ray alone and resolves it.
   void test_shadow(PathState& s) const;
-  // `viewer_n`: viewer_side_normal of the hit (PreparedHit::viewer_n, computed once by prepare).
-  // With `deferred`, a plain-occlusion shadow ray is not tested but left in *deferred (active),
+  // `receiver`: the hit's point and viewer_side_normal (PreparedHit::viewer_n, computed once
+  // by prepare), for which the light is picked (and which keeps the light distribution's
+  // normalisation there). With `deferred`, a plain-occlusion shadow ray is not tested but left in *deferred (active),
   // and the radiance returned is what an unblocked ray gives. `u` (PathSampler::light): u.x
   // picks the light and, remapped within its interval, is the light point's first coordinate.
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
-                       const Vec3& viewer_n, Point2 u,
+                       LightReceiver& receiver, Point2 u,
                        int transparent_bounces, PathStats& stats,
                        PendingShadow* deferred = nullptr) const;
   // A direction towards the world (light sampler entry lights().size()), drawn from (u1, u2).
   LightSample world_light_sample(float u1, float u2) const;
   // Radiance a ray collects from the lights it passes through before `tmax`; MIS-weighted
-  // against light sampling unless `count_fully` (camera rays, delta bounces).
+  // against light sampling at `from` (the vertex that scattered it) unless `count_fully`
+  // (camera rays, delta bounces).
   RGB lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bool count_fully,
-                       float bsdf_pdf) const;
+                       float bsdf_pdf, const LightReceiver& from) const;
   // Radiance an escaped ray receives from the world and the suns with an angle (camera rays
   // see a sun only when it is visible to the camera).
   RGB escaped(const Vec3& dir, bool camera_ray, bool count_fully, float bsdf_pdf) const;
