@@ -89,7 +89,6 @@ LightSampler::LightSampler(const std::vector<Light>& lights, const Environment* 
     const Bounds b = bounds_of(lights[i]);
     const int k = local_.count++;
     local_of_[i] = k;
-    local_.index[size_t(k)] = static_cast<uint32_t>(i);
     local_.cx[size_t(k)] = b.centre.x;
     local_.cy[size_t(k)] = b.centre.y;
     local_.cz[size_t(k)] = b.centre.z;

@@ -15,9 +15,7 @@
 // with more, every point uses the global distribution.
 #pragma once
 
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -82,7 +80,6 @@ class LightSampler {
   struct LocalLights {
     alignas(16) std::array<float, kMaxSpatialLights> cx{}, cy{}, cz{}, radius{}, nx{}, ny{},
         nz{}, one_sided{}, power{};
-    std::array<uint32_t, kMaxSpatialLights> index{};  // into the scene's lights
     int count = 0;
   };
   // Lights k..k+3's importance at r, and each one's power where it can reach r (else 0), in
@@ -101,7 +98,7 @@ class LightSampler {
   std::vector<float> pmf_, cdf_;
   LocalLights local_;          // count 0: picking is global
   std::vector<int> local_of_;  // per entry, its index in local_ (-1: not local)
-  float local_share_ = 0.0f;       // the local lights' joint global probability
+  float local_share_ = 0.0f;   // the local lights' joint global probability
 };
 
 }  // namespace bxdf::render
