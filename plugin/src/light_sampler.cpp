@@ -131,14 +131,17 @@ void LightSampler::evaluate4(const LocalLights& l, int k, const LightReceiver& r
   const __m128 tz = _mm_sub_ps(load(l.cz), _mm_set1_ps(r.p.z));
   const __m128 one_sided = load(l.one_sided), radius = load(l.radius), power = load(l.power);
   // > 0: r is behind the light's emitting side (what sample_light() gives nothing for).
-  const __m128 facing = _mm_add_ps(_mm_add_ps(_mm_mul_ps(load(l.nx), tx), _mm_mul_ps(load(l.ny), ty)),
-                                   _mm_mul_ps(load(l.nz), tz));
+  const __m128 facing =
+      _mm_add_ps(_mm_add_ps(_mm_mul_ps(load(l.nx), tx), _mm_mul_ps(load(l.ny), ty)),
+                 _mm_mul_ps(load(l.nz), tz));
   const __m128 behind = _mm_and_ps(_mm_cmpgt_ps(one_sided, zero), _mm_cmpgt_ps(facing, zero));
   // The cosines at either end, each raised by the sine of the half-angle θr the bounding
   // sphere subtends (cos θ + sin θr ≥ cos(θ − θr), the best cosine over the sphere, for the
   // angles that matter), over the squared distance; inside the sphere, as at its surface.
-  const __m128 length2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(tx, tx), _mm_mul_ps(ty, ty)), _mm_mul_ps(tz, tz));
-  const __m128 d2 = _mm_max_ps(_mm_max_ps(length2, _mm_mul_ps(radius, radius)), _mm_set1_ps(1e-12f));
+  const __m128 length2 =
+      _mm_add_ps(_mm_add_ps(_mm_mul_ps(tx, tx), _mm_mul_ps(ty, ty)), _mm_mul_ps(tz, tz));
+  const __m128 d2 =
+      _mm_max_ps(_mm_max_ps(length2, _mm_mul_ps(radius, radius)), _mm_set1_ps(1e-12f));
   const __m128 inv_d = _mm_div_ps(one, _mm_sqrt_ps(d2));
   const __m128 sin_r = _mm_min_ps(_mm_mul_ps(radius, inv_d), one);
   __m128 c = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(r.n.x), tx),
@@ -147,7 +150,8 @@ void LightSampler::evaluate4(const LocalLights& l, int k, const LightReceiver& r
                         inv_d);
   if (r.two_sided) c = _mm_andnot_ps(_mm_set1_ps(-0.0f), c);
   const __m128 receiver = _mm_min_ps(_mm_max_ps(_mm_add_ps(c, sin_r), zero), one);
-  const __m128 emitted = _mm_min_ps(_mm_max_ps(_mm_sub_ps(sin_r, _mm_mul_ps(facing, inv_d)), zero), one);
+  const __m128 emitted =
+      _mm_min_ps(_mm_max_ps(_mm_sub_ps(sin_r, _mm_mul_ps(facing, inv_d)), zero), one);
   const __m128 emitter = _mm_max_ps(emitted, _mm_sub_ps(one, one_sided));  // 1: two-sided
   const __m128 value = _mm_min_ps(
       _mm_mul_ps(_mm_mul_ps(_mm_mul_ps(power, receiver), emitter), _mm_mul_ps(inv_d, inv_d)),

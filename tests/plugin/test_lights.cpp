@@ -338,8 +338,9 @@ TEST(Lights, RenderedLightsPickedByImportanceAddUpToTheirIrradiance) {
   Floor f;
   const Light ellipse = area_light_from_power(Vec3(0, 0, 1), Vec3(1.5f, 0, 0), Vec3(0, 1, 0),
                                               Vec3(0, 0, -1), AreaShape::Ellipse, 50.0f, RGB(1.0f));
-  const Light square = area_light_from_power(Vec3(0, 0, 2), Vec3(2, 0, 0), Vec3(0, 2, 0),
-                                             Vec3(0, 0, -1), AreaShape::Rectangle, 80.0f, RGB(1.0f));
+  const Light square =
+      area_light_from_power(Vec3(0, 0, 2), Vec3(2, 0, 0), Vec3(0, 2, 0), Vec3(0, 0, -1),
+                            AreaShape::Rectangle, 80.0f, RGB(1.0f));
   const Light point = point_light_from_power(Vec3(0, 0, 3), 300.0f, RGB(1.0f), 0.05f);
   const Light away = area_light_from_power(Vec3(0, 0, 2.5f), Vec3(1, 0, 0), Vec3(0, 1, 0),
                                            Vec3(0, 0, 1), AreaShape::Rectangle, 100.0f, RGB(1.0f));
