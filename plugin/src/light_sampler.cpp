@@ -102,24 +102,6 @@ LightSampler::LightSampler(const std::vector<Light>& lights, const Environment* 
   local_share_ = static_cast<float>(local_share);
 }
 
-float LightSampler::importance(const Light& light, float power, const LightReceiver& r) {
-  const Bounds b = bounds_of(light);
-  LocalLights one;
-  one.count = 1;
-  one.cx[0] = b.centre.x;
-  one.cy[0] = b.centre.y;
-  one.cz[0] = b.centre.z;
-  one.radius[0] = b.radius;
-  one.nx[0] = b.normal.x;
-  one.ny[0] = b.normal.y;
-  one.nz[0] = b.normal.z;
-  one.one_sided[0] = b.one_sided ? 1.0f : 0.0f;
-  one.power[0] = power;
-  alignas(16) float value[4], reaching[4];
-  evaluate4(one, 0, r, value, reaching);
-  return value[0];
-}
-
 void LightSampler::evaluate4(const LocalLights& l, int k, const LightReceiver& r,
                              float* importance, float* reaching_power) {
   const auto load = [k](const std::array<float, kMaxSpatialLights>& a) {

@@ -68,11 +68,6 @@ class LightSampler {
   size_t sample(LightReceiver& r, float u, float* probability, float* remapped = nullptr) const;
   float probability(const LightReceiver& r, size_t index) const;
 
-  // How much local light `light` of power `power` can give r, unnormalised (the importance
-  // the distribution at r is made from); 0 where it gives nothing (r behind a one-sided area
-  // light), or where its bounds say so.
-  static float importance(const Light& light, float power, const LightReceiver& r);
-
  private:
   // The local lights' bounds, made once, as a structure of arrays (the pass over them at a
   // shading point is vectorised): each one's bounding sphere, its emitting normal and whether
