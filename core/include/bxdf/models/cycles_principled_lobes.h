@@ -143,7 +143,6 @@ struct GTR1Clearcoat {
 // ∫ f; the share that keeps its variance least depends on α, η and cos θo
 // (microfacet/refraction_cover.h).
 struct GGXRefraction {
-
   microfacet::GGX ggx;
   float eta = 1.5f;
 

@@ -1,13 +1,13 @@
 // The path tracer (pbrt's PathIntegrator with one-light next-event estimation): at each vertex
 // one light is picked (light_sampler.h: by power, and among a few local lights by how much
-// each can give the point) and sampled, the BSDF is
-// sampled to continue the path, and both strategies are combined with the power heuristic;
-// delta lights and delta lobes are counted by the one strategy that can find them. Lights are
-// not geometry: rays pass through them, collecting their radiance (as Cycles' lights_intersect).
-// A constant world is found by BSDF sampling alone (Cycles does not light-sample it). Shadow
-// rays leave from Cycles' terminator-offset point. Russian roulette as Cycles plays it: from
-// russian_roulette_depth + 1 scatterings on, with probability √(max throughput), rolled at the
-// hit the next ray finds once what that ray brought back has counted.
+// each can give the point) and sampled, the BSDF is sampled to continue the path, and both
+// strategies are combined with the power heuristic; delta lights and delta lobes are counted by
+// the one strategy that can find them. Lights are not geometry: rays pass through them,
+// collecting their radiance (as Cycles' lights_intersect). A constant world is found by BSDF
+// sampling alone (Cycles does not light-sample it). Shadow rays leave from Cycles'
+// terminator-offset point. Russian roulette as Cycles plays it: from russian_roulette_depth + 1
+// scatterings on, with probability √(max throughput), rolled at the hit the next ray finds once
+// what that ray brought back has counted.
 #pragma once
 
 #include <array>
@@ -162,8 +162,8 @@ class PathTracer {
   void test_shadow(PathState& s) const;
   // `receiver`: the hit's point and viewer_side_normal (PreparedHit::viewer_n, computed once
   // by prepare), for which the light is picked (and which keeps the light distribution's
-  // normalisation there). With `deferred`, a plain-occlusion shadow ray is not tested but left in *deferred (active),
-  // and the radiance returned is what an unblocked ray gives. `u` (PathSampler::light): u.x
+  // normalisation there). With `deferred`, a plain-occlusion shadow ray is not tested but left
+  // in *deferred (active), and the radiance returned is what an unblocked ray gives. `u` (PathSampler::light): u.x
   // picks the light and, remapped within its interval, is the light point's first coordinate.
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
                        LightReceiver& receiver, Point2 u,
