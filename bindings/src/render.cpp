@@ -107,20 +107,24 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
     if (wake) channel.wake.notify_one();
     return !cancel.load();
   };
-  callbacks.on_pass = [&](const render::Film& film, const render::RenderProgress& p) {
-    // The last pass's image is the result; without partial images no pass is copied.
-    if (!has_callback || !partial_images || p.pass >= p.passes) return;
-    std::vector<float> rgba(static_cast<size_t>(film.width()) * static_cast<size_t>(film.height()) * 4);
-    film.rgba(rgba.data());
-    {
-      std::lock_guard<std::mutex> lock(channel.mutex);
-      channel.pass_image = std::move(rgba);
-      channel.pass_ready = true;
-      channel.tiles_done = p.tiles_done;
-      channel.tiles_total = p.tiles_total;
-    }
-    channel.wake.notify_one();
-  };
+  // Only partial images need passes: without on_pass the render is one pass (renderer.h).
+  if (has_callback && partial_images) {
+    callbacks.on_pass = [&](const render::Film& film, const render::RenderProgress& p) {
+      // The last pass's image is the result.
+      if (p.pass >= p.passes) return;
+      std::vector<float> rgba(static_cast<size_t>(film.width()) *
+                              static_cast<size_t>(film.height()) * 4);
+      film.rgba(rgba.data());
+      {
+        std::lock_guard<std::mutex> lock(channel.mutex);
+        channel.pass_image = std::move(rgba);
+        channel.pass_ready = true;
+        channel.tiles_done = p.tiles_done;
+        channel.tiles_total = p.tiles_total;
+      }
+      channel.wake.notify_one();
+    };
+  }
 
   render::Film film;
   render::RenderStats stats;
@@ -264,7 +268,7 @@ for the partial images too.
 (8; 0 = direct light only), ``pixel_filter`` ("box", "gaussian", "blackman_harris" or
 "pixel_center", any case; Blackman-Harris, Cycles' default), ``filter_width`` (1.5 px),
 ``threads`` (0 = all cores), ``seed`` (0), ``tile_size`` (16), ``samples_per_pass`` (0 =
-automatic), ``russian_roulette_depth`` (1: paths may be ended at random once they have
+automatic: about samples/8, at most 16, with partial images, else one pass), ``russian_roulette_depth`` (1: paths may be ended at random once they have
 scattered this many + 1 times; Cycles' Min Light Bounces + 1), ``transparent_max_bounces`` (8:
 Cycles' setting; passes through Transparent BSDFs are not bounces, and the surface after this
 many + 1 passes adds only its emission), ``transparent_background`` (False).

@@ -113,7 +113,8 @@ TEST_F(HostileScene, CamerasAndMeshesFarFromTheOriginAreRefused) {
 }
 
 TEST_F(HostileScene, TileCountPastTwoToThe31DoesNotOverflow) {
-  // 2^24 spp in passes of 16 = 2^20 passes, x 64 x 64 one-pixel tiles = 2^32 tiles.
+  // 2^24 spp in passes of 16 (the passes of partial images: on_pass is set) = 2^20 passes,
+  // x 64 x 64 one-pixel tiles = 2^32 tiles.
   LoadedScene s = parse_scene_json(
       scene_with(kCamera, kQuad, R"({"width": 64, "height": 64, "tile_size": 1, "spp": 16777216})"),
       "s.json", dir_.string());
@@ -124,6 +125,7 @@ TEST_F(HostileScene, TileCountPastTwoToThe31DoesNotOverflow) {
     total = p.tiles_total;
     return false;  // cancel at once
   };
+  callbacks.on_pass = [](const Film&, const RenderProgress&) {};
   RenderStats stats;
   render_scene(*s.scene, s.camera, s.settings, callbacks, &stats);
   EXPECT_EQ(total, uint64_t(1) << 32);

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include "bxdf/microfacet/multiscatter_ggx.h"
 #include "bxdf/registry.h"
@@ -170,6 +172,50 @@ TEST(Renderer, ProgressPassesAndCancel) {
   render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s, flagged, &none);
   EXPECT_TRUE(none.cancelled);
   EXPECT_EQ(none.camera_samples, 0u);
+}
+
+// Passes are for partial images: without on_pass the render is one pass (one tile callback per
+// tile), with the same bits as the passes on_pass asks for; a cancel reaches a tile between its
+// batches, so even one long tile stops early.
+TEST(Renderer, OnePassWithoutPartialImagesAndCancelInsideATile) {
+  SmallScene sc;
+  RenderSettings s = small_settings();
+  s.threads = 2;
+  int tiles = 0, passes = 0;
+  RenderCallbacks no_pass;
+  no_pass.on_tile = [&](const RenderProgress& p) {
+    ++tiles;
+    EXPECT_EQ(p.tiles_total, 9u);
+    return true;
+  };
+  const std::vector<float> one_pass =
+      render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s, no_pass).rgba();
+  EXPECT_EQ(tiles, 9);
+  RenderCallbacks with_pass;
+  with_pass.on_pass = [&](const Film&, const RenderProgress&) { ++passes; };
+  const std::vector<float> in_passes =
+      render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s, with_pass).rgba();
+  EXPECT_EQ(passes, 8);  // about spp/8 samples each: one
+  EXPECT_EQ(one_pass, in_passes);  // bit for bit
+
+  // One tile of 24 x 20 pixels at 2^14 samples (several seconds), cancelled after 50 ms.
+  s.tile_size = 32;
+  s.samples_per_pixel = 1 << 14;
+  s.threads = 1;
+  std::atomic<bool> flag{false};
+  RenderCallbacks flagged;
+  flagged.cancel = &flag;
+  RenderStats stats;
+  std::thread canceller([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    flag = true;
+  });
+  render_scene(sc.scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s, flagged, &stats);
+  canceller.join();
+  EXPECT_TRUE(stats.cancelled);
+  EXPECT_EQ(stats.samples_per_pixel, 0);
+  EXPECT_GT(stats.camera_samples, 0u);
+  EXPECT_LT(stats.camera_samples, 24u * 20u * (1u << 14) / 4);
 }
 
 TEST(Renderer, RefusesBadSettingsByName) {

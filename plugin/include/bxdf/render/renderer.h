@@ -26,7 +26,9 @@ struct RenderSettings {
   uint64_t seed = 0;
   int threads = 0;            // 0 = all cores
   int tile_size = 16;
-  int samples_per_pass = 0;   // 0 = about spp/8, at most 16 (keeps cancel responsive)
+  // 0 = about spp/8, at most 16, when RenderCallbacks::on_pass is set (its partial images),
+  // else all samples in one pass.
+  int samples_per_pass = 0;
   bool transparent_background = false;  // alpha = coverage instead of 1
 };
 
@@ -44,7 +46,7 @@ struct RenderCallbacks {
   std::function<bool(const RenderProgress&)> on_tile;
   // After every pass, on the calling thread; the film then holds a consistent image.
   std::function<void(const Film&, const RenderProgress&)> on_pass;
-  // Checked before every tile; set it from anywhere to stop.
+  // Checked before every tile and between a tile's batches; set it from anywhere to stop.
   const std::atomic<bool>* cancel = nullptr;
 };
 
