@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "bxdf/render/recycled_buffers.h"
+
 namespace bxdf::python {
 
 namespace {
@@ -38,12 +40,23 @@ bool uses_every_position(const IndexedMeshArrays& in) {
 render::Mesh copied_as_is(const IndexedMeshArrays& in) {
   render::Mesh out;
   const size_t nv = in.num_positions, corners = 3 * in.num_triangles;
-  out.positions.reserve(3 * nv + 1);  // room for the renderer's padding float (Scene keeps it)
+  // Into the buffers of the last scene where they fit (recycled_buffers.h).
+  out.positions = render::recycled::floats(3 * nv + 1);  // + the renderer's padding float
   out.positions.assign(in.positions, in.positions + 3 * nv);
-  if (in.normals && in.normal_indices) out.normals.assign(in.normals, in.normals + 3 * nv);
-  if (in.uvs && in.uv_indices) out.uvs.assign(in.uvs, in.uvs + 2 * nv);
+  if (in.normals && in.normal_indices) {
+    out.normals = render::recycled::floats(3 * nv);
+    out.normals.assign(in.normals, in.normals + 3 * nv);
+  }
+  if (in.uvs && in.uv_indices) {
+    out.uvs = render::recycled::floats(2 * nv);
+    out.uvs.assign(in.uvs, in.uvs + 2 * nv);
+  }
+  out.indices = render::recycled::indices(corners);
   out.indices.assign(in.triangles, in.triangles + corners);  // validated: all >= 0
-  if (in.material_indices) out.material_indices.assign(in.material_indices, in.material_indices + in.num_triangles);
+  if (in.material_indices) {
+    out.material_indices = render::recycled::indices(in.num_triangles);
+    out.material_indices.assign(in.material_indices, in.material_indices + in.num_triangles);
+  }
   return out;
 }
 
@@ -60,8 +73,12 @@ render::Mesh weld_corners(const IndexedMeshArrays& in) {
   render::Mesh out;
   const bool has_normals = in.normals && in.normal_indices;
   const bool has_uvs = in.uvs && in.uv_indices;
+  out.indices = render::recycled::indices(corners);
   out.indices.resize(corners);
-  if (in.material_indices) out.material_indices.assign(in.material_indices, in.material_indices + in.num_triangles);
+  if (in.material_indices) {
+    out.material_indices = render::recycled::indices(in.num_triangles);
+    out.material_indices.assign(in.material_indices, in.material_indices + in.num_triangles);
+  }
 
   // Output vertex → (position, normal, uv) indices; per position, the head of its split list.
   // 32-bit, as the input indices are: fewer bytes to allocate and touch per corner.
@@ -96,10 +113,16 @@ render::Mesh weld_corners(const IndexedMeshArrays& in) {
   }
 
   const size_t nv = src_p.size();
-  out.positions.reserve(3 * nv + 1);  // room for the renderer's padding float (Scene keeps it)
+  out.positions = render::recycled::floats(3 * nv + 1);  // + the renderer's padding float
   out.positions.resize(3 * nv);
-  if (has_normals) out.normals.resize(3 * nv);
-  if (has_uvs) out.uvs.resize(2 * nv);
+  if (has_normals) {
+    out.normals = render::recycled::floats(3 * nv);
+    out.normals.resize(3 * nv);
+  }
+  if (has_uvs) {
+    out.uvs = render::recycled::floats(2 * nv);
+    out.uvs.resize(2 * nv);
+  }
   for (size_t v = 0; v < nv; ++v) {
     for (int k = 0; k < 3; ++k) out.positions[3 * v + k] = in.positions[3 * size_t(src_p[v]) + k];
     if (has_normals)
@@ -110,27 +133,19 @@ render::Mesh weld_corners(const IndexedMeshArrays& in) {
   return out;
 }
 
-render::Mesh transformed(const render::Mesh& mesh, const std::array<double, 16>& m) {
-  render::Mesh out;
-  out.material = mesh.material;
-  out.material_indices = mesh.material_indices;
-  out.uvs = mesh.uvs;
-  out.indices = mesh.indices;
-  out.uv_maps = mesh.uv_maps;
-  out.tangents = mesh.tangents;
-  out.texture_space = mesh.texture_space;
-  out.visibility = mesh.visibility;
-  out.terminator = mesh.terminator;
-  out.object_to_world.resize(12);
-  for (int i = 0; i < 12; ++i) out.object_to_world[size_t(i)] = static_cast<float>(m[size_t(i)]);
+render::Mesh transformed(render::Mesh mesh, const std::array<double, 16>& m) {
+  // In place: a mesh placed once (the usual case) is moved in, so its arrays are neither copied
+  // nor allocated twice (fresh memory costs a page fault per 4 KB, which dominated the
+  // conversion of the harness scenes inside Blender).
+  mesh.object_to_world.resize(12);
+  for (int i = 0; i < 12; ++i) mesh.object_to_world[size_t(i)] = static_cast<float>(m[size_t(i)]);
 
   const size_t nv = mesh.num_vertices();
-  out.positions.reserve(3 * nv + 1);  // room for the renderer's padding float
-  out.positions.resize(3 * nv);
+  mesh.positions.reserve(3 * nv + 1);  // room for the renderer's padding float
   for (size_t v = 0; v < nv; ++v) {
     const double x = mesh.positions[3 * v], y = mesh.positions[3 * v + 1], z = mesh.positions[3 * v + 2];
     for (int r = 0; r < 3; ++r)
-      out.positions[3 * v + r] = static_cast<float>(m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3]);
+      mesh.positions[3 * v + r] = static_cast<float>(m[4 * r] * x + m[4 * r + 1] * y + m[4 * r + 2] * z + m[4 * r + 3]);
   }
 
   // Cofactor matrix of the 3×3 part = det · (A⁻¹)ᵀ: the normal transform up to scale.
@@ -145,38 +160,39 @@ render::Mesh transformed(const render::Mesh& mesh, const std::array<double, 16>&
 
   if (det < 0.0) {
     // A mirror turns counter-clockwise into clockwise; swapping two corners restores the front.
-    for (size_t t = 0; t < mesh.num_triangles(); ++t) std::swap(out.indices[3 * t + 1], out.indices[3 * t + 2]);
+    for (size_t t = 0; t < mesh.num_triangles(); ++t) std::swap(mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]);
     // Per-corner attributes follow their corners.
     auto swap_corners = [&](std::vector<float>& a, size_t width) {
       for (size_t t = 0; t < mesh.num_triangles(); ++t)
         for (size_t c = 0; c < width; ++c) std::swap(a[(3 * t + 1) * width + c], a[(3 * t + 2) * width + c]);
     };
-    for (auto& uv : out.uv_maps) swap_corners(uv, 2);
-    for (auto& t : out.tangents)
+    for (auto& uv : mesh.uv_maps) swap_corners(uv, 2);
+    for (auto& t : mesh.tangents)
       if (!t.empty()) swap_corners(t, 4);
   }
   // Tangents are directions on the surface: moved by the linear part. A mirror flips the
   // bitangent (cross(A n, A t) = −A (n × t) for an orthogonal A with det < 0).
-  for (auto& t : out.tangents)
+  for (auto& t : mesh.tangents)
     for (size_t c = 0; c < t.size() / 4; ++c) {
       const double x = t[4 * c], y = t[4 * c + 1], z = t[4 * c + 2];
       for (int r = 0; r < 3; ++r)
         t[4 * c + size_t(r)] = static_cast<float>(a(r, 0) * x + a(r, 1) * y + a(r, 2) * z);
       if (det < 0.0) t[4 * c + 3] = -t[4 * c + 3];
     }
-  if (!mesh.normals.empty() && det != 0.0) {
+  if (det == 0.0) {
+    mesh.normals.clear();  // no normal transform: shading falls back to the face normals
+  } else if (!mesh.normals.empty()) {
     const double sign = det > 0.0 ? 1.0 : -1.0;
-    out.normals.resize(3 * nv);
     for (size_t v = 0; v < nv; ++v) {
       const double x = mesh.normals[3 * v], y = mesh.normals[3 * v + 1], z = mesh.normals[3 * v + 2];
       double n[3];
       for (int r = 0; r < 3; ++r) n[r] = sign * (cof[r][0] * x + cof[r][1] * y + cof[r][2] * z);
       const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       const double inv = len > 0.0 ? 1.0 / len : 0.0;
-      for (int r = 0; r < 3; ++r) out.normals[3 * v + r] = static_cast<float>(n[r] * inv);
+      for (int r = 0; r < 3; ++r) mesh.normals[3 * v + r] = static_cast<float>(n[r] * inv);
     }
   }
-  return out;
+  return mesh;
 }
 
 }  // namespace bxdf::python

@@ -35,7 +35,8 @@ inline constexpr int kMaxSplitSearch = 16;
 // The mesh moved to world space by the affine object→world matrix (row-major 4×4, last row
 // 0 0 0 1): positions by the matrix, normals by its inverse transpose (renormalised). A mirroring
 // matrix (negative determinant) reverses the winding so that the front stays the front; a
-// singular one drops the normals (the flattened object is shaded flat).
-render::Mesh transformed(const render::Mesh& mesh, const std::array<double, 16>& object_to_world);
+// singular one drops the normals (the flattened object is shaded flat). Taken by value: a mesh
+// moved in is transformed in place.
+render::Mesh transformed(render::Mesh mesh, const std::array<double, 16>& object_to_world);
 
 }  // namespace bxdf::python

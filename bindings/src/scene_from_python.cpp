@@ -646,8 +646,10 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
             add(transformed(weld(m), instance_matrix[i]), what, false);
           } else {
             if (kept[m].num_triangles() == 0) kept[m] = weld(m);
-            add(transformed(kept[m], instance_matrix[i]), what, false);
-            if (--flattened_uses[m] == 0) kept[m] = Mesh();
+            const bool last_use = --flattened_uses[m] == 0;  // then moved in, not copied
+            add(transformed(last_use ? std::move(kept[m]) : Mesh(kept[m]), instance_matrix[i]), what,
+                false);
+            if (last_use) kept[m] = Mesh();
           }
           continue;
         }

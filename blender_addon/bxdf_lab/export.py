@@ -43,7 +43,11 @@ Lights and their units: light_export.py. The world: world_export.py.
 
 import numpy as np
 
-from . import api, light_export, material_source, node_materials, world_export
+from . import api, array_pool, light_export, material_source, node_materials, world_export
+
+# Mesh arrays come from the pool of the last export's arrays (array_pool.py: fresh memory is a
+# page fault per 4 KB).
+_pool = array_pool.mesh_arrays
 
 GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
 
@@ -59,7 +63,7 @@ def _fan_corners(loop_start, loop_total):
     Written into one int32 array: each temporary of a triangle's length is fresh memory to fault
     in, which costs more than the arithmetic."""
     triangle_polygon = np.repeat(np.arange(len(loop_start), dtype=np.int32), loop_total - 2)
-    corners = np.empty((len(triangle_polygon), 3), dtype=np.int32)
+    corners = _pool.empty(len(triangle_polygon) * 3, np.int32).reshape(-1, 3)
     np.take(loop_start, triangle_polygon, out=corners[:, 0])
     np.add(corners[:, 0], 1, out=corners[:, 1])
     # A quad's second triangle (one after a triangle of the same polygon) starts at its corner 2.
@@ -74,7 +78,7 @@ def _indices(collection, prop, count):
     copies without converting (the raw array of polygons and loops, 15x faster than into int32;
     loop triangles 3-6x), where an int32 buffer makes it convert element by element. Viewed as
     int32 without a copy (Blender's indices are below 2^31)."""
-    out = np.empty(count, dtype=np.uint32)
+    out = _pool.empty(count, np.uint32)
     collection.foreach_get(prop, out)
     return out.view(np.int32)
 
@@ -91,7 +95,7 @@ def _loop_triangle_corners(mesh):
 def mesh_arrays(mesh):
     """Arrays of one evaluated Blender mesh (see the module docstring for the layout)."""
     n_vertices, n_polygons, n_loops = len(mesh.vertices), len(mesh.polygons), len(mesh.loops)
-    positions = np.empty(n_vertices * 3, dtype=np.float32)
+    positions = _pool.empty(n_vertices * 3, np.float32)
     mesh.vertices.foreach_get("co", positions)
     loop_vertex = _indices(mesh.loops, "vertex_index", n_loops)
     loop_start = _indices(mesh.polygons, "loop_start", n_polygons)
@@ -103,31 +107,34 @@ def mesh_arrays(mesh):
     else:
         mesh.calc_loop_triangles()
         corners, triangle_polygon = _loop_triangle_corners(mesh)
-    triangles = loop_vertex[corners]
+    # Blender's loops name valid vertices: "clip" clips nothing, and spares the copy of `out`
+    # that np.take's default mode makes.
+    triangles = np.take(loop_vertex, corners, out=_pool.empty(corners.size, np.int32).reshape(-1, 3),
+                        mode="clip")
 
-    polygon_material = np.zeros(n_polygons, dtype=np.int32)
+    polygon_material = _pool.zeros(n_polygons, np.int32)
     if "material_index" in mesh.attributes:  # absent: every polygon uses slot 0
         mesh.polygons.foreach_get("material_index", polygon_material)
 
-    smooth = np.empty(n_polygons, dtype=bool)
+    smooth = _pool.empty(n_polygons, bool)
     mesh.polygons.foreach_get("use_smooth", smooth)
     if mesh.has_custom_normals or mesh.use_auto_smooth:
         # Split normals honour auto smooth and custom normals; they are per loop.
         mesh.calc_normals_split()
-        normals = np.empty(n_loops * 3, dtype=np.float32)
+        normals = _pool.empty(n_loops * 3, np.float32)
         mesh.loops.foreach_get("normal", normals)
         normals, normal_indices = normals.reshape(n_loops, 3), corners
     else:
         # Mesh.vertex_normals and polygon_normals read the normal arrays directly: 1.5x (2.4x
         # for polygons) quicker than the same numbers through MeshVertex.normal and
         # MeshPolygon.normal.
-        vertex_normals = np.empty(n_vertices * 3, dtype=np.float32)
+        vertex_normals = _pool.empty(n_vertices * 3, np.float32)
         mesh.vertex_normals.foreach_get("vector", vertex_normals)
         vertex_normals = vertex_normals.reshape(n_vertices, 3)
         if smooth.all():
             normals, normal_indices = vertex_normals, triangles
         else:
-            polygon_normals = np.empty(n_polygons * 3, dtype=np.float32)
+            polygon_normals = _pool.empty(n_polygons * 3, np.float32)
             mesh.polygon_normals.foreach_get("vector", polygon_normals)
             flat_index = (n_vertices + triangle_polygon)[:, None]
             if not smooth.any():
@@ -142,7 +149,7 @@ def mesh_arrays(mesh):
     uvs, uv_indices = None, None
     uv_layer = mesh.uv_layers.active
     if uv_layer is not None:
-        uvs = np.empty(n_loops * 2, dtype=np.float32)
+        uvs = _pool.empty(n_loops * 2, np.float32)
         uv_layer.data.foreach_get("uv", uvs)
         uvs, uv_indices = uvs.reshape(n_loops, 2), corners
 
@@ -153,7 +160,8 @@ def mesh_arrays(mesh):
         "normal_indices": None if normal_indices is None else np.ascontiguousarray(normal_indices, dtype=np.int32),
         "uvs": uvs,
         "uv_indices": uv_indices,
-        "material_indices": polygon_material[triangle_polygon],
+        "material_indices": np.take(polygon_material, triangle_polygon,
+                                    out=_pool.empty(len(triangle_polygon), np.int32), mode="clip"),
     }
 
 
@@ -211,11 +219,14 @@ def _object_mesh(obj, materials):
     finally:
         if copied:
             obj.to_mesh_clear()
+    slot_of_triangle = data["material_indices"]
+    scene_material = _pool.empty(len(slot_of_triangle), np.int32)
     if slots:
-        table = np.asarray(slots, dtype=np.int32)
-        data["material_indices"] = table[np.clip(data["material_indices"], 0, len(slots) - 1)]
+        # "clip": a slot past the last counts as the last, as in Blender.
+        np.take(np.asarray(slots, dtype=np.int32), slot_of_triangle, out=scene_material, mode="clip")
     else:
-        data["material_indices"] = np.full_like(data["material_indices"], -1)
+        scene_material.fill(-1)
+    data["material_indices"] = scene_material
     data["name"] = obj.name
     # Object ray visibility and Cycles' shadow terminator offsets (geometry, shading).
     data["visible_camera"] = bool(obj.visible_camera)
@@ -277,6 +288,7 @@ def camera_dict(scene, camera_obj):
 def export_scene(depsgraph):
     """The evaluated scene as plain data (see the module docstring). ValueError names a material
     whose stored parameters the registry refuses."""
+    _pool.begin_export()
     scene = depsgraph.scene_eval
     materials = _MaterialTable()
     warnings = []

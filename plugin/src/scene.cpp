@@ -8,9 +8,11 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "bxdf/params.h"
+#include "bxdf/render/recycled_buffers.h"
 #include "bxdf/render/textured_emission.h"
 
 namespace bxdf::render {
@@ -169,7 +171,18 @@ void Scene::add_graph_attributes(const MeshView& m, const std::string& who, Stor
 }
 
 Scene::Scene() : embree_(std::make_unique<EmbreeState>()) {}
-Scene::~Scene() = default;
+Scene::~Scene() {
+  // The meshes' arrays go to the next scene (recycled_buffers.h), once Embree, which shares
+  // the positions, is gone.
+  embree_.reset();
+  for (StoredMesh& m : meshes_) {
+    recycled::keep(std::move(m.positions));
+    recycled::keep(std::move(m.normals));
+    recycled::keep(std::move(m.uvs));
+    recycled::keep(std::move(m.indices));
+    recycled::keep(std::move(m.material_indices));
+  }
+}
 
 uint32_t Scene::add_material(Material material) {
   if (committed_) throw ParameterError("add_material: the scene is already committed");
@@ -227,6 +240,11 @@ void take_or_copy(std::vector<T>* owned, const T* view, size_t count, std::vecto
   if (owned && owned->data() == view && owned->size() == count) {
     *out = std::move(*owned);
   } else {
+    if constexpr (std::is_same_v<T, float>) {
+      *out = recycled::floats(count + 1);  // + 1: the positions' padding float
+    } else {
+      *out = recycled::indices(count);
+    }
     out->assign(view, view + count);
   }
 }
