@@ -281,7 +281,7 @@ partial result (same layout as the return value) after each pass but the last, e
 partial result). Return False to cancel (any other return value, None included, continues). The
 GIL is released while waiting, so other Python threads run.
 
-Cancelled by on_progress, the render stops within a tile and the image of the finished passes is
+Cancelled by on_progress, the render stops within a tile and the image rendered so far is
 returned (``stats["cancelled"]`` is True). An exception raised in on_progress, or KeyboardInterrupt
 (Ctrl-C), stops the render the same way and is then raised. A bad scene or setting raises
 ValueError naming the field, e.g. ``scene['meshes'][2]['normal_indices']: index 9 out of range [0, 8)``.
@@ -291,7 +291,8 @@ With ``return_stats=True`` the result is ``(image, stats)``, stats a dict: ``sec
 ``rejected_samples`` (NaN/Inf/negative radiance dropped), ``cancelled``, ``warnings`` (list of str:
 what was rendered approximately), ``triangles`` (as drawn), ``stored_triangles`` (an instanced mesh
 counted once) and ``instances`` (Embree instances), and for :func:`render` ``convert_seconds``
-(reading, welding and flattening the meshes) and ``bvh_seconds`` (building Embree's BVH);
+(reading, welding and flattening the meshes), ``bvh_seconds`` (building Embree's BVH) and
+``bvh_build`` ("quick" where the render traces few rays per triangle, else "medium");
 ``seconds`` is the render alone.)doc";
 
 constexpr const char* kRenderFileDoc = R"doc(render_scene_file(path, settings=None, on_progress=None, *, bottom_up=False, partial_images=True, return_stats=False) -> image or (image, stats)
@@ -308,6 +309,7 @@ static void scene_counts(const render::Scene& scene, py::dict& out) {
   out["triangles"] = scene.num_rendered_triangles();
   out["stored_triangles"] = scene.num_triangles();
   out["instances"] = scene.num_instances();
+  out["bvh_build"] = scene.quick_build() ? "quick" : "medium";
 }
 
 void bind_render(py::module_& m) {
@@ -315,13 +317,15 @@ void bind_render(py::module_& m) {
       "render",
       [](const py::object& scene, const py::object& settings, const py::object& on_progress, bool bottom_up,
          bool partial_images, bool return_stats) {
-        SceneFromPython s = scene_from_python(scene);
         render::RenderSettings rs;
         rs.filter = render::FilterType::BlackmanHarris;  // Cycles' defaults
         rs.filter_width = 1.5f;
+        // The settings first: the rays they ask for choose the BVH's build (Scene::commit).
+        apply_render_settings(settings, rs);
+        SceneFromPython s = scene_from_python(
+            scene, double(rs.samples_per_pixel) * (1.0 + double(rs.max_bounces)));
         rs.width = s.width;
         rs.height = s.height;
-        apply_render_settings(settings, rs);
         py::dict times;
         times["convert_seconds"] = s.convert_seconds;
         times["bvh_seconds"] = s.bvh_seconds;

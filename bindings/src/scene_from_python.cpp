@@ -509,7 +509,7 @@ render::CameraSettings camera_from_python(py::handle v, const std::string& path)
 
 }  // namespace
 
-SceneFromPython scene_from_python(const py::handle& scene_obj) {
+SceneFromPython scene_from_python(const py::handle& scene_obj, double rays_per_pixel) {
   const auto started = std::chrono::steady_clock::now();
   const std::string root = "scene";
   const py::dict d = as_dict(scene_obj, root);
@@ -666,7 +666,7 @@ SceneFromPython scene_from_python(const py::handle& scene_obj) {
         if (meshes[i].arrays.num_triangles > 0) add(weld(i), item_path(key_path(root, "meshes"), i), false);
     }
     const auto converted = std::chrono::steady_clock::now();
-    scene.commit();
+    scene.commit(rays_per_pixel * double(out.width) * double(out.height));
     out.convert_seconds = std::chrono::duration<double>(converted - started).count();
     out.bvh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - converted).count();
   }

@@ -27,8 +27,10 @@ struct SceneFromPython {
   double bvh_seconds = 0.0;      // Scene::commit (Embree's BVH)
 };
 
-// Builds and commits the scene (the BVH is built with the GIL released).
-SceneFromPython scene_from_python(const py::handle& scene);
+// Builds and commits the scene (the BVH is built with the GIL released). `rays_per_pixel`:
+// about how many rays a pixel will trace (samples x (1 + max bounces)), for the BVH's build
+// quality (Scene::commit); 0 if not known.
+SceneFromPython scene_from_python(const py::handle& scene, double rays_per_pixel = 0.0);
 
 // Applies the keys of `settings` (a dict or None) to `out`; unknown keys and bad values are
 // refused naming "settings['key']".

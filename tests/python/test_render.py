@@ -307,6 +307,24 @@ def test_default_material_for_minus_one():
     np.testing.assert_allclose(image[..., :3][mask], expected[mask], rtol=2e-3, atol=1e-6)
 
 
+def test_the_bvh_build_follows_the_rays_per_triangle():
+    """Few rays per triangle (pixels x samples x (1 + max bounces) under 96 per triangle) get
+    Embree's quick build, more the medium one; the image does not depend on it (the closest hit
+    is the closest hit)."""
+    material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.8}}
+    scene = scene_dict(material)
+    samples = 96 * len(scene["meshes"][0]["triangles"]) // (SIZE * SIZE) - 1
+    settings = dict(DIRECT, samples=samples, pixel_filter="box")
+    quick, stats = bxdf.render(scene, settings, return_stats=True)
+    assert stats["bvh_build"] == "quick"
+    # Twice the rays per pixel: the medium build. In this scene (one point light, a black
+    # world) a bounce finds no light, so max_bounces 1 draws and adds the same as 0.
+    medium, stats = bxdf.render(scene, dict(settings, max_bounces=1), return_stats=True)
+    assert stats["bvh_build"] == "medium"
+    assert quick[..., :3].max() > 0
+    np.testing.assert_array_equal(quick, medium)
+
+
 def test_other_lights_and_area_light_render():
     material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.8}}
     scene = scene_dict(material)

@@ -134,6 +134,7 @@ class RenderStats(TypedDict, total=False):
     warnings: list[str]
     convert_seconds: float  # render() only
     bvh_seconds: float  # render() only
+    bvh_build: str  # "quick" or "medium"
 
 class RenderSettingsDict(TypedDict, total=False):
     samples: int

@@ -93,10 +93,16 @@ class Scene {
   void set_world(const RGB& radiance);
   void set_world(EnvironmentSettings settings);
   // Builds the BVH, the light list (one mesh light per mesh with emissive triangles) and the
-  // light sampler (by power).
-  void commit();
+  // light sampler (by power). `expected_rays`: about how many rays the render will trace (0:
+  // not known). Below kQuickBuildRaysPerTriangle per triangle the meshes' BVHs are Embree's
+  // quick build (RTC_BUILD_QUALITY_LOW), whose slower tracing the render would not win back
+  // the medium build's time with.
+  void commit(double expected_rays = 0.0);
+  static constexpr double kQuickBuildRaysPerTriangle = 96.0;
 
   bool committed() const { return committed_; }
+  // Whether commit chose the quick build for the meshes' BVHs.
+  bool quick_build() const { return quick_build_; }
   size_t num_meshes() const { return meshes_.size(); }
   size_t num_triangles() const;  // stored: an instanced mesh counts once
   size_t num_instances() const { return instances_.size(); }
@@ -237,6 +243,7 @@ class Scene {
   LightSampler light_sampler_;
   float bounding_radius_ = 0.0f;
   bool committed_ = false;
+  bool quick_build_ = false;
   bool signed_emission_ = false;
   bool rays_find_light_ = true;
   std::unique_ptr<EmbreeState> embree_;
