@@ -336,8 +336,15 @@ Light light_from_python(py::handle v, const std::string& path) {
 // scene['world']: {"color": RGB, "texture": {"path", "weight" (RGB), "matrix" (3x4 texture
 // vector of a direction), "interpolation"}, "sampling": "auto"|"manual"|"none",
 // "map_resolution": int} (render/environment.h).
-render::EnvironmentSettings world_from_python(const py::dict& w, const std::string& path) {
-  render::EnvironmentSettings s;
+// The world's settings, and its image file ("" for none: a constant world).
+struct WorldFromPython {
+  render::EnvironmentSettings settings;
+  std::string image_path;
+};
+
+WorldFromPython world_from_python(const py::dict& w, const std::string& path) {
+  WorldFromPython out;
+  render::EnvironmentSettings& s = out.settings;
   if (has(w, "color")) s.constant = colour(w["color"], key_path(path, "color"));
   if (has(w, "texture")) {
     const std::string tp = key_path(path, "texture");
@@ -356,11 +363,7 @@ render::EnvironmentSettings world_from_python(const py::dict& w, const std::stri
       if (mode == "closest") s.interpolation = render::TextureInterpolation::Closest;
       else if (mode != "linear") refuse(key_path(tp, "interpolation"), "'" + mode + "' is unknown; expected 'closest' or 'linear'");
     }
-    try {
-      s.image = render::load_equirect_image(file);
-    } catch (const std::exception& e) {
-      refuse(key_path(tp, "path"), e.what());
-    }
+    out.image_path = file;
   }
   if (has(w, "sampling")) {
     const std::string mode = lower(text(w["sampling"], key_path(path, "sampling"), "'auto', 'manual' or 'none'"));
@@ -369,7 +372,7 @@ render::EnvironmentSettings world_from_python(const py::dict& w, const std::stri
   }
   if (has(w, "map_resolution"))
     s.map_resolution = static_cast<int>(integer(w["map_resolution"], key_path(path, "map_resolution"), 0, 65536));
-  return s;
+  return out;
 }
 
 // One mesh of scene['meshes'], validated, with its arrays kept alive for weld_corners.
@@ -584,8 +587,21 @@ SceneFromPython scene_from_python(const py::handle& scene_obj, double rays_per_p
   if (has(d, "world")) {
     const std::string path = key_path(root, "world");
     const py::dict w = as_dict(d["world"], path);
-    render::EnvironmentSettings world = world_from_python(w, path);
-    with_path(path, [&] { scene.set_world(std::move(world)); return 0; });
+    WorldFromPython world = world_from_python(w, path);
+    if (world.image_path.empty()) {
+      with_path(path, [&] { scene.set_world(std::move(world.settings)); return 0; });
+    } else {
+      // Built once for renders of the same file and settings (environment.h).
+      std::shared_ptr<const render::Environment> built;
+      try {
+        built = render::shared_environment(world.image_path, world.settings);
+      } catch (const std::invalid_argument& e) {  // the settings (Environment's checks)
+        refuse(path, e.what());
+      } catch (const std::exception& e) {  // the file
+        refuse(key_path(key_path(path, "texture"), "path"), e.what());
+      }
+      scene.set_world(std::move(built));
+    }
   }
 
   if (has(d, "lights")) {

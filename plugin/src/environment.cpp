@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -147,6 +148,59 @@ EquirectImage load_equirect_image(const std::string& path) {
     if (equirect_cache.size() > size_t(kEquirectCacheEntries)) equirect_cache.pop_back();
   }
   return *image;
+}
+
+namespace {
+
+// The settings a built Environment depends on besides its image (compared bit for bit).
+bool same_settings(const EnvironmentSettings& a, const EnvironmentSettings& b) {
+  return std::memcmp(&a.constant, &b.constant, sizeof(RGB)) == 0 &&
+         std::memcmp(&a.weight, &b.weight, sizeof(RGB)) == 0 &&
+         std::memcmp(a.matrix, b.matrix, sizeof(a.matrix)) == 0 &&
+         a.interpolation == b.interpolation && a.importance_sample == b.importance_sample &&
+         a.map_resolution == b.map_resolution;
+}
+
+// The last worlds built from files, most recent first.
+struct CachedEnvironment {
+  std::string path;
+  FileStamp stamp;
+  EnvironmentSettings settings;  // without the image
+  std::shared_ptr<const Environment> environment;
+};
+std::mutex environment_cache_mutex;
+std::deque<CachedEnvironment> environment_cache;
+
+}  // namespace
+
+std::shared_ptr<const Environment> shared_environment(const std::string& image_path,
+                                                      const EnvironmentSettings& settings) {
+  EnvironmentSettings key = settings;
+  key.image = EquirectImage();
+  FileStamp stamp;
+  const bool stamped = stamp_of(image_path, &stamp);
+  if (stamped) {
+    std::lock_guard<std::mutex> lock(environment_cache_mutex);
+    for (auto it = environment_cache.begin(); it != environment_cache.end(); ++it) {
+      if (it->path != image_path || !(it->stamp == stamp) || !same_settings(it->settings, key))
+        continue;
+      CachedEnvironment hit = *it;
+      environment_cache.erase(it);
+      environment_cache.push_front(hit);
+      return hit.environment;
+    }
+  }
+  EnvironmentSettings with_image = key;
+  with_image.image = load_equirect_image(image_path);
+  auto environment = std::make_shared<const Environment>(std::move(with_image));
+  // Kept only if the file did not change while it was read.
+  FileStamp after;
+  if (stamped && stamp_of(image_path, &after) && after == stamp) {
+    std::lock_guard<std::mutex> lock(environment_cache_mutex);
+    environment_cache.push_front({image_path, stamp, key, environment});
+    if (environment_cache.size() > size_t(kEquirectCacheEntries)) environment_cache.pop_back();
+  }
+  return environment;
 }
 
 namespace {

@@ -170,7 +170,8 @@ void Scene::add_graph_attributes(const MeshView& m, const std::string& who, Stor
                              size.z != 0.0f ? 1.0f / size.z : 0.0f);
 }
 
-Scene::Scene() : embree_(std::make_unique<EmbreeState>()) {}
+Scene::Scene()
+    : world_(std::make_shared<const Environment>()), embree_(std::make_unique<EmbreeState>()) {}
 Scene::~Scene() {
   // The meshes' arrays go to the next scene (recycled_buffers.h), once Embree, which shares
   // the positions, is gone.
@@ -354,7 +355,13 @@ void Scene::set_world(const RGB& radiance) {
 
 void Scene::set_world(EnvironmentSettings settings) {
   if (committed_) throw ParameterError("set_world: the scene is already committed");
-  world_ = Environment(std::move(settings));
+  world_ = std::make_shared<const Environment>(std::move(settings));
+}
+
+void Scene::set_world(std::shared_ptr<const Environment> world) {
+  if (committed_) throw ParameterError("set_world: the scene is already committed");
+  if (!world) throw ParameterError("set_world: the world is null");
+  world_ = std::move(world);
 }
 
 size_t Scene::num_triangles() const {
@@ -561,10 +568,10 @@ void Scene::commit(double expected_rays) {
     if (lights_[i].type == LightType::Sun && !lights_[i].is_delta())
       wide_suns_.push_back(static_cast<uint32_t>(i));
   }
-  light_sampler_ = LightSampler(lights_, &world_, bounding_radius_);
+  light_sampler_ = LightSampler(lights_, world_.get(), bounding_radius_);
   const bool emits = std::any_of(materials_.begin(), materials_.end(),
                                  [](const Material& m) { return m.may_emit(); });
-  rays_find_light_ = !world_.is_black() || !hittable_lights_.empty() || !wide_suns_.empty() || emits;
+  rays_find_light_ = !world_->is_black() || !hittable_lights_.empty() || !wide_suns_.empty() || emits;
   committed_ = true;
 }
 

@@ -307,6 +307,45 @@ TEST(Environment, ReloadedImageIsTheFilesCurrentContents) {
   EXPECT_THROW(load_equirect_image(path), std::runtime_error);
 }
 
+// shared_environment builds a world once: the same file and settings give the same Environment,
+// other settings or a rewritten file another one, with the file's current pixels; a file that
+// is gone is an error.
+TEST(Environment, SharedWorldIsBuiltOncePerFileAndSettings) {
+  const std::string path = bxdf::test_support::process_temp_path("shared_world.pfm");
+  const auto write = [&](float value) {
+    std::ofstream f(path, std::ios::binary | std::ios::trunc);
+    f << "PF\n4 2\n-1.0\n";
+    for (int i = 0; i < 24; ++i) f.write(reinterpret_cast<const char*>(&value), sizeof value);
+  };
+  write(0.25f);
+  EnvironmentSettings settings;
+  settings.weight = RGB(1.0f);
+  const auto first = shared_environment(path, settings);
+  EXPECT_NEAR(first->eval(Vec3(0, 0, 1)).r, 0.25f, 1e-6f);
+  EXPECT_EQ(shared_environment(path, settings), first);  // the same object
+  EnvironmentSettings brighter = settings;
+  brighter.weight = RGB(2.0f);
+  const auto other = shared_environment(path, brighter);
+  EXPECT_NE(other, first);
+  EXPECT_NEAR(other->eval(Vec3(0, 0, 1)).r, 0.5f, 1e-6f);
+  EnvironmentSettings unsampled = settings;
+  unsampled.importance_sample = false;
+  EXPECT_NE(shared_environment(path, unsampled), first);
+  // File times tick at the kernel's clock granularity (a few ms): wait past it.
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  write(0.75f);
+  const auto rewritten = shared_environment(path, settings);
+  EXPECT_NE(rewritten, first);
+  EXPECT_NEAR(rewritten->eval(Vec3(0, 0, 1)).r, 0.75f, 1e-6f);
+  EXPECT_NEAR(first->eval(Vec3(0, 0, 1)).r, 0.25f, 1e-6f);  // a scene holding it keeps it
+  // A scene takes the shared world as it is.
+  Scene scene;
+  scene.set_world(rewritten);
+  EXPECT_EQ(&scene.world(), rewritten.get());
+  std::filesystem::remove(path);
+  EXPECT_THROW(shared_environment(path, settings), std::runtime_error);
+}
+
 TEST(Environment, RotatedImageIsTheImageSeenAlongTheRotatedDirection) {
   const EnvironmentSettings rotated = rotated_blobs();
   EnvironmentSettings plain = rotated;

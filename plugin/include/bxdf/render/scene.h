@@ -92,6 +92,7 @@ class Scene {
   // A constant world, or one with an environment image (see environment.h).
   void set_world(const RGB& radiance);
   void set_world(EnvironmentSettings settings);
+  void set_world(std::shared_ptr<const Environment> world);  // e.g. from shared_environment
   // Builds the BVH, the light list (one mesh light per mesh with emissive triangles) and the
   // light sampler (by power). `expected_rays`: about how many rays the render will trace (0:
   // not known). Below kQuickBuildRaysPerTriangle per triangle the meshes' BVHs are Embree's
@@ -109,7 +110,7 @@ class Scene {
   size_t num_rendered_triangles() const;  // as drawn: an instanced mesh once per placement
   const std::vector<Material>& materials() const { return materials_; }
   const std::vector<Light>& lights() const { return lights_; }
-  const Environment& world() const { return world_; }
+  const Environment& world() const { return *world_; }
   const LightSampler& light_sampler() const { return light_sampler_; }
   // Indices into lights() of the lights rays can hit (point/spot with a radius, area) and of
   // suns with an angle (found by escaped rays).
@@ -239,7 +240,7 @@ class Scene {
   std::vector<Light> lights_;
   std::vector<int> mesh_area_light_, instance_area_light_;
   std::vector<uint32_t> hittable_lights_, wide_suns_;
-  Environment world_;
+  std::shared_ptr<const Environment> world_;  // never null; may be shared with other scenes
   LightSampler light_sampler_;
   float bounding_radius_ = 0.0f;
   bool committed_ = false;
