@@ -5,10 +5,13 @@ so every export's mesh arrays were fresh memory, faulted in 4 KB at a time: 2000
 faults for the 242k triangles of a harness scene, 20-28 ms of its export on a VM where a fault
 costs ~9 us. An array of the pool is handed out only when nothing but the pool refers to it (the
 export's dict and its views are gone), so an array still in use is never written over. The pool
-keeps only what the last two exports used, and at most MAX_BYTES.
+keeps only what the last two exports used, and at most MAX_BYTES. Exports may run at once (a
+material preview renders in a job thread while F12 renders in another): an array is claimed
+under a lock, so two of them never get the same one.
 """
 
 import sys
+import threading
 
 import numpy as np
 
@@ -26,9 +29,14 @@ class ArrayPool:
         self._last_use = {}  # id(array) -> the export that last took it
         self._bytes = 0
         self._export = 0
+        self._lock = threading.Lock()
 
     def begin_export(self):
         """Starts an export: arrays neither this nor the last export took are let go."""
+        with self._lock:
+            self._begin_export()
+
+    def _begin_export(self):
         self._export += 1
         for key, arrays in list(self._arrays.items()):
             kept = [a for a in arrays if self._last_use.get(id(a), 0) >= self._export - 1]
@@ -43,7 +51,12 @@ class ArrayPool:
 
     def empty(self, n, dtype):
         """A 1-D array of n elements of dtype, contents undefined (as np.empty)."""
-        dtype = np.dtype(dtype)
+        with self._lock:
+            # The caller holds the array before the lock is let go: no other export can see it
+            # free in between.
+            return self._claim(n, np.dtype(dtype))
+
+    def _claim(self, n, dtype):
         key = (dtype.str, n)
         arrays = self._arrays.get(key)
         if arrays:

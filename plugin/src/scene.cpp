@@ -480,9 +480,10 @@ void Scene::commit(double expected_rays) {
   // triangle. Measured in bxdf.render on the harness scenes at 64 spp against the medium
   // build: 242k triangles built in 6 instead of 23 ms, traced 1-4% slower; where the rays per
   // triangle (pixels x samples x (1 + max bounces)) were 19-67, build and render took 2-11%
-  // less time; at 108 (cornell) and 117 (cycles_glass_room), 2-6% more.
-  const bool quick =
-      expected_rays > 0.0 && expected_rays < kQuickBuildRaysPerTriangle * double(num_triangles());
+  // less time; at 108 (cornell) and 117 (cycles_glass_room), 2-6% more. A compact scene is
+  // one BVH of the scene's quality (medium).
+  const bool quick = !compact && expected_rays > 0.0 &&
+                     expected_rays < kQuickBuildRaysPerTriangle * double(num_triangles());
   const RTCBuildQuality mesh_quality = quick ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM;
   quick_build_ = quick;
   rtcSetSceneBuildQuality(e.scene, compact ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_LOW);

@@ -2,6 +2,8 @@
 it, a second export reuses the first one's memory once its dict is gone and exports the same
 numbers, and the pool keeps to its bound."""
 
+import threading
+
 import bpy
 import numpy as np
 
@@ -39,6 +41,26 @@ def test_the_pool_keeps_what_the_last_two_exports_used_and_its_bound():
     assert pool.nbytes == 2000  # the last export's arrays stay
     pool.begin_export()
     assert pool.nbytes == 0  # unused in two exports: let go
+
+
+def test_exports_at_once_never_get_the_same_array():
+    pool = array_pool.ArrayPool()
+    pool.begin_export()
+    for _ in range(8):  # kept arrays, all free again
+        pool.empty(64, np.float32)
+    held = {0: [], 1: []}
+
+    def claim(k):
+        for _ in range(200):
+            held[k].append(pool.empty(64, np.float32))
+
+    threads = [threading.Thread(target=claim, args=(k,)) for k in held]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    addresses = [_address(a) for k in held for a in held[k]]
+    assert len(set(addresses)) == len(addresses)
 
 
 def _scene():

@@ -97,7 +97,7 @@ class Scene {
   // light sampler (by power). `expected_rays`: about how many rays the render will trace (0:
   // not known). Below kQuickBuildRaysPerTriangle per triangle the meshes' BVHs are Embree's
   // quick build (RTC_BUILD_QUALITY_LOW), whose slower tracing the render would not win back
-  // the medium build's time with.
+  // the medium build's time with (not in a compact scene: 2 M triangles or more).
   void commit(double expected_rays = 0.0);
   static constexpr double kQuickBuildRaysPerTriangle = 96.0;
 
