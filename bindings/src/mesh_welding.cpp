@@ -41,22 +41,14 @@ render::Mesh copied_as_is(const IndexedMeshArrays& in) {
   render::Mesh out;
   const size_t nv = in.num_positions, corners = 3 * in.num_triangles;
   // Into the buffers of the last scene where they fit (recycled_buffers.h).
-  out.positions = render::recycled::floats(3 * nv + 1);  // + the renderer's padding float
-  out.positions.assign(in.positions, in.positions + 3 * nv);
-  if (in.normals && in.normal_indices) {
-    out.normals = render::recycled::floats(3 * nv);
-    out.normals.assign(in.normals, in.normals + 3 * nv);
-  }
-  if (in.uvs && in.uv_indices) {
-    out.uvs = render::recycled::floats(2 * nv);
-    out.uvs.assign(in.uvs, in.uvs + 2 * nv);
-  }
-  out.indices = render::recycled::indices(corners);
-  out.indices.assign(in.triangles, in.triangles + corners);  // validated: all >= 0
-  if (in.material_indices) {
-    out.material_indices = render::recycled::indices(in.num_triangles);
-    out.material_indices.assign(in.material_indices, in.material_indices + in.num_triangles);
-  }
+  using render::recycled::copied;
+  out.positions = copied<float>(in.positions, 3 * nv, 3 * nv + 1);  // + the padding float
+  if (in.normals && in.normal_indices) out.normals = copied<float>(in.normals, 3 * nv, 3 * nv);
+  if (in.uvs && in.uv_indices) out.uvs = copied<float>(in.uvs, 2 * nv, 2 * nv);
+  out.indices = copied<uint32_t>(in.triangles, corners, corners);  // validated: all >= 0
+  if (in.material_indices)
+    out.material_indices =
+        copied<uint32_t>(in.material_indices, in.num_triangles, in.num_triangles);
   return out;
 }
 
@@ -75,10 +67,9 @@ render::Mesh weld_corners(const IndexedMeshArrays& in) {
   const bool has_uvs = in.uvs && in.uv_indices;
   out.indices = render::recycled::indices(corners);
   out.indices.resize(corners);
-  if (in.material_indices) {
-    out.material_indices = render::recycled::indices(in.num_triangles);
-    out.material_indices.assign(in.material_indices, in.material_indices + in.num_triangles);
-  }
+  if (in.material_indices)
+    out.material_indices =
+        render::recycled::copied<uint32_t>(in.material_indices, in.num_triangles, in.num_triangles);
 
   // Output vertex → (position, normal, uv) indices; per position, the head of its split list.
   // 32-bit, as the input indices are: fewer bytes to allocate and touch per corner.

@@ -110,44 +110,61 @@ bool stamp_of(const std::string& path, FileStamp* stamp) {
   return true;
 }
 
-// The last images read, most recent first.
-struct CachedEquirect {
-  std::string path;
-  FileStamp stamp;
-  std::shared_ptr<const EquirectImage> image;
+// What was built from a file, by the file's path and stamp and a key of its own (the settings
+// it was built with): the last kEquirectCacheEntries, most recent first. A build is kept only
+// if the file did not change while it was read, and replaces what the same path and key held.
+template <typename Key, typename Value>
+class FileCache {
+ public:
+  template <typename SameKey, typename Build>
+  std::shared_ptr<const Value> get(const std::string& path, const Key& key, SameKey same_key,
+                                   Build build) {
+    FileStamp stamp;
+    const bool stamped = stamp_of(path, &stamp);
+    if (stamped) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (auto it = entries_.begin(); it != entries_.end(); ++it) {
+        if (it->path != path || !(it->stamp == stamp) || !same_key(it->key, key)) continue;
+        Entry hit = *it;
+        entries_.erase(it);
+        entries_.push_front(hit);
+        return hit.value;
+      }
+    }
+    std::shared_ptr<const Value> value = build();
+    FileStamp after;
+    if (stamped && stamp_of(path, &after) && after == stamp) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const auto stale = [&](const Entry& e) { return e.path == path && same_key(e.key, key); };
+      entries_.erase(std::remove_if(entries_.begin(), entries_.end(), stale), entries_.end());
+      entries_.push_front({path, stamp, key, value});
+      if (entries_.size() > size_t(kEquirectCacheEntries)) entries_.pop_back();
+    }
+    return value;
+  }
+
+ private:
+  struct Entry {
+    std::string path;
+    FileStamp stamp;
+    Key key;
+    std::shared_ptr<const Value> value;
+  };
+  std::mutex mutex_;
+  std::deque<Entry> entries_;
 };
-std::mutex equirect_cache_mutex;
-std::deque<CachedEquirect> equirect_cache;
+
+struct NoKey {};
+FileCache<NoKey, EquirectImage> equirect_cache;
 
 EquirectImage read_equirect_image(const std::string& path);
 
 }  // namespace
 
 EquirectImage load_equirect_image(const std::string& path) {
-  FileStamp stamp;
-  const bool stamped = stamp_of(path, &stamp);
-  if (stamped) {
-    std::lock_guard<std::mutex> lock(equirect_cache_mutex);
-    for (auto it = equirect_cache.begin(); it != equirect_cache.end(); ++it) {
-      if (it->path != path || !(it->stamp == stamp)) continue;
-      CachedEquirect hit = *it;
-      equirect_cache.erase(it);
-      equirect_cache.push_front(hit);
-      return *hit.image;
-    }
-  }
-  auto image = std::make_shared<const EquirectImage>(read_equirect_image(path));
-  // Kept only if the file did not change while it was read.
-  FileStamp after;
-  if (stamped && stamp_of(path, &after) && after == stamp) {
-    std::lock_guard<std::mutex> lock(equirect_cache_mutex);
-    equirect_cache.erase(std::remove_if(equirect_cache.begin(), equirect_cache.end(),
-                                        [&](const CachedEquirect& c) { return c.path == path; }),
-                         equirect_cache.end());
-    equirect_cache.push_front({path, stamp, image});
-    if (equirect_cache.size() > size_t(kEquirectCacheEntries)) equirect_cache.pop_back();
-  }
-  return *image;
+  return *equirect_cache.get(path, NoKey{}, [](NoKey, NoKey) { return true; }, [&] {
+    return std::make_shared<const EquirectImage>(read_equirect_image(path));
+  });
 }
 
 namespace {
@@ -161,15 +178,7 @@ bool same_settings(const EnvironmentSettings& a, const EnvironmentSettings& b) {
          a.map_resolution == b.map_resolution;
 }
 
-// The last worlds built from files, most recent first.
-struct CachedEnvironment {
-  std::string path;
-  FileStamp stamp;
-  EnvironmentSettings settings;  // without the image
-  std::shared_ptr<const Environment> environment;
-};
-std::mutex environment_cache_mutex;
-std::deque<CachedEnvironment> environment_cache;
+FileCache<EnvironmentSettings, Environment> environment_cache;
 
 }  // namespace
 
@@ -177,30 +186,11 @@ std::shared_ptr<const Environment> shared_environment(const std::string& image_p
                                                       const EnvironmentSettings& settings) {
   EnvironmentSettings key = settings;
   key.image = EquirectImage();
-  FileStamp stamp;
-  const bool stamped = stamp_of(image_path, &stamp);
-  if (stamped) {
-    std::lock_guard<std::mutex> lock(environment_cache_mutex);
-    for (auto it = environment_cache.begin(); it != environment_cache.end(); ++it) {
-      if (it->path != image_path || !(it->stamp == stamp) || !same_settings(it->settings, key))
-        continue;
-      CachedEnvironment hit = *it;
-      environment_cache.erase(it);
-      environment_cache.push_front(hit);
-      return hit.environment;
-    }
-  }
-  EnvironmentSettings with_image = key;
-  with_image.image = load_equirect_image(image_path);
-  auto environment = std::make_shared<const Environment>(std::move(with_image));
-  // Kept only if the file did not change while it was read.
-  FileStamp after;
-  if (stamped && stamp_of(image_path, &after) && after == stamp) {
-    std::lock_guard<std::mutex> lock(environment_cache_mutex);
-    environment_cache.push_front({image_path, stamp, key, environment});
-    if (environment_cache.size() > size_t(kEquirectCacheEntries)) environment_cache.pop_back();
-  }
-  return environment;
+  return environment_cache.get(image_path, key, same_settings, [&] {
+    EnvironmentSettings with_image = key;
+    with_image.image = load_equirect_image(image_path);
+    return std::make_shared<const Environment>(std::move(with_image));
+  });
 }
 
 namespace {

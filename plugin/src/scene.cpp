@@ -8,7 +8,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 #include <utility>
 
 #include "bxdf/params.h"
@@ -241,12 +240,7 @@ void take_or_copy(std::vector<T>* owned, const T* view, size_t count, std::vecto
   if (owned && owned->data() == view && owned->size() == count) {
     *out = std::move(*owned);
   } else {
-    if constexpr (std::is_same_v<T, float>) {
-      *out = recycled::floats(count + 1);  // + 1: the positions' padding float
-    } else {
-      *out = recycled::indices(count);
-    }
-    out->assign(view, view + count);
+    *out = recycled::copied<T>(view, count, count + 1);  // + 1: the positions' padding float
   }
 }
 

@@ -284,16 +284,24 @@ TEST(Environment, MapIsTheSameAtAnyThreadCount) {
   }
 }
 
+namespace {
+
+// A width x height RGB PFM (little-endian) of one value, written over `path`.
+void write_uniform_pfm(const std::string& path, int width, int height, float value) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f << "PF\n" << width << " " << height << "\n-1.0\n";
+  for (int i = 0; i < 3 * width * height; ++i)
+    f.write(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+}  // namespace
+
 // load_equirect_image keeps the images it read: an unchanged file comes back equal (from the
 // cache), a rewritten one (same name, same size, other pixels) is read again, and a file that
 // is gone is an error, not a cached image.
 TEST(Environment, ReloadedImageIsTheFilesCurrentContents) {
   const std::string path = bxdf::test_support::process_temp_path("equirect_cache.pfm");
-  const auto write = [&](float value) {
-    std::ofstream f(path, std::ios::binary | std::ios::trunc);
-    f << "PF\n2 1\n-1.0\n";
-    for (int i = 0; i < 6; ++i) f.write(reinterpret_cast<const char*>(&value), sizeof value);
-  };
+  const auto write = [&](float value) { write_uniform_pfm(path, 2, 1, value); };
   write(0.25f);
   const EquirectImage first = load_equirect_image(path);
   ASSERT_EQ(first.width, 2);
@@ -312,11 +320,7 @@ TEST(Environment, ReloadedImageIsTheFilesCurrentContents) {
 // is gone is an error.
 TEST(Environment, SharedWorldIsBuiltOncePerFileAndSettings) {
   const std::string path = bxdf::test_support::process_temp_path("shared_world.pfm");
-  const auto write = [&](float value) {
-    std::ofstream f(path, std::ios::binary | std::ios::trunc);
-    f << "PF\n4 2\n-1.0\n";
-    for (int i = 0; i < 24; ++i) f.write(reinterpret_cast<const char*>(&value), sizeof value);
-  };
+  const auto write = [&](float value) { write_uniform_pfm(path, 4, 2, value); };
   write(0.25f);
   EnvironmentSettings settings;
   settings.weight = RGB(1.0f);

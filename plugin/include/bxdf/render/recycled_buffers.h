@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace bxdf::render::recycled {
@@ -19,6 +20,21 @@ inline constexpr size_t kMaxKeptBytes = size_t(64) << 20;
 // is one, else a new one. Thread-safe.
 std::vector<float> floats(size_t n);
 std::vector<uint32_t> indices(size_t n);
+
+// The n values at `first` (converted to T: float or uint32_t) in a buffer from floats() or
+// indices() with room for `room` >= n elements.
+template <typename T, typename From>
+std::vector<T> copied(const From* first, size_t n, size_t room) {
+  static_assert(std::is_same_v<T, float> || std::is_same_v<T, uint32_t>);
+  std::vector<T> v;
+  if constexpr (std::is_same_v<T, float>) {
+    v = floats(room);
+  } else {
+    v = indices(room);
+  }
+  v.assign(first, first + n);
+  return v;
+}
 
 // Keeps `v`'s buffer (emptied) for a later request, or frees it past kMaxKeptBytes.
 void keep(std::vector<float>&& v);
