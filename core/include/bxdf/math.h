@@ -65,6 +65,34 @@ BXDF_KERNEL float exp_poly(float x) {
   return p * scale;
 }
 
+// sin x and cos x for |x| <= π/4, within 2 ulp: Cephes' sinf and cosf polynomials, made for
+// that interval (no range reduction, no call).
+struct SinCos {
+  float sin, cos;
+};
+inline SinCos sin_cos_within_quarter_pi(float x) {
+  const float z = x * x;
+  const float s = ((-1.9515295891e-4f * z + 8.3321608736e-3f) * z - 1.6666654611e-1f) * z * x + x;
+  const float c =
+      ((2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f) * z * z -
+      0.5f * z + 1.0f;
+  return {s, c};
+}
+
+// acos(x) for x in [-1, 1], within 2 ulp: Cephes' acosf, through asin(z) = z + z³ P(z²) on
+// [0, 1/2] and acos|x| = 2 asin(√((1 − |x|)/2)) above; inline and without a call.
+inline float acos_poly(float x) {
+  const float a = std::fabs(x);
+  const bool wide = a > 0.5f;
+  const float z = wide ? 0.5f * (1.0f - a) : a * a;
+  const float w = wide ? std::sqrt(z) : a;
+  const float asin_w =
+      ((((4.2163199048e-2f * z + 2.4181311049e-2f) * z + 4.5470025998e-2f) * z +
+        7.4953002686e-2f) * z + 1.6666752422e-1f) * z * w + w;
+  const float acos_a = wide ? 2.0f * asin_w : kPiOver2 - asin_w;
+  return x < 0.0f ? kPi - acos_a : acos_a;
+}
+
 struct Vec3 {
   float x = 0, y = 0, z = 0;
   constexpr Vec3() = default;
