@@ -19,7 +19,7 @@ using namespace bxdf;
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
-// The share of refraction samples a model drew cosine-weighted for wo (cycles_glass.h): the
+// The share of refraction samples a model drew as cover samples for wo (cycles_glass.h): the
 // cover table at the pair turned so that wo is above.
 float cover_share(const std::string& distribution, double roughness, double ior, const Vec3& wo) {
   const cycles::CoverDistribution kind = distribution == "ggx"
@@ -146,7 +146,7 @@ TEST(CyclesGlass, MatchesCyclesFormulaOnBothFacesIncludingUnphysicalPairs) {
               // A pair no facet facing wo refracts into: Cycles evaluates it, and so do we.
               const float cover = cover_share(distribution, roughness, ior, wo);
               unphysical += m->pdf(wo, wi) > 0 &&
-                            m->pdf(wo, wi) <= 1.0001f * cover * cosine_hemisphere_pdf(std::fabs(wi.z));
+                            m->pdf(wo, wi) <= 1.0001f * cover * uniform_hemisphere_pdf();
             }
           }
           EXPECT_GT(transmitted, 40);
@@ -162,7 +162,7 @@ TEST(CyclesGlass, MatchesCyclesFormulaOnBothFacesIncludingUnphysicalPairs) {
 
 TEST(CyclesGlass, FacetPdfIsCyclesPdfOnPhysicalPairs) {
   // Cycles' refraction pdf is G1(ωo) |ωh·ωo| |ωh·ωi| D η² / (cos θo |ht|²); ours is that on the
-  // pairs its sampler reaches, mixed with the cosine cover.
+  // pairs its sampler reaches, mixed with the uniform cover.
   const double ior = 1.5, alpha = 0.25;
   const CyclesDielectric ref{true, false, alpha, ior};
   const BxDFPtr m = make_dielectric("cycles_refraction", "ggx", 0.5, ior);
@@ -184,7 +184,7 @@ TEST(CyclesGlass, FacetPdfIsCyclesPdfOnPhysicalPairs) {
                               ior * ior / (I.z * ht2);
     const double cover = cover_share("ggx", 0.5, ior, wo);
     const double facet_pdf =
-        (s.pdf - cover * cosine_hemisphere_pdf(std::fabs(s.wi.z))) / (1.0 - cover);
+        (s.pdf - cover * uniform_hemisphere_pdf()) / (1.0 - cover);
     EXPECT_NEAR(facet_pdf, cycles_pdf, 2e-4 * cycles_pdf + 1e-6);
     ++checked;
   }

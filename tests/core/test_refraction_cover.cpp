@@ -99,14 +99,14 @@ Moments fixed_share_moments(float alpha, float eta, const Vec3& wo, float share,
       Vec3 wi;
       bool ok;
       if (u.x < share) {
-        wi = sample_cosine_hemisphere(Point2(u.x / share, u.y));
-        wi.z = -wi.z;
+        wi = cycles::sample_refraction_cover(Point2(u.x / share, u.y));
         ok = wi.z < 0.0f;
       } else {
         ok = lobe.sample(wo, Point2((u.x - share) / (1.0f - share), u.y), eta, &wi);
       }
       if (!ok) continue;
-      const double pdf = share * cosine_hemisphere_pdf(-wi.z) + (1.0 - share) * lobe.pdf(wo, wi, eta);
+      const double pdf =
+          share * cycles::refraction_cover_pdf(wi) + (1.0 - share) * lobe.pdf(wo, wi, eta);
       if (!(pdf > 0.0)) continue;
       const double w = double(lobe.f(wo, wi, eta)) * std::fabs(wi.z) / pdf;
       out.mean += w;

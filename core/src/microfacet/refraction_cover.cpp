@@ -43,12 +43,10 @@ float estimate_share(float alpha, float eta, float cos_o, int strata, uint64_t s
           a += w * w;
         }
       }
-      // B: cosine-weighted directions below where the facet sampler has no density
-      // (f |cos θi| / p_cos = π f).
-      Vec3 wc = sample_cosine_hemisphere(u);
-      wc.z = -wc.z;
+      // B: cover samples where the facet sampler has no density.
+      const Vec3 wc = sample_refraction_cover(u);
       if (wc.z < 0.0f && lobe.pdf(wo, wc, eta) == 0.0f) {
-        const double w = kPi * double(lobe.f(wo, wc, eta));
+        const double w = double(lobe.f(wo, wc, eta)) * -wc.z / refraction_cover_pdf(wc);
         b += w * w;
       }
     }

@@ -1,10 +1,14 @@
-// How many of a Cycles rough refraction lobe's samples to draw cosine-weighted.
+// How many of a Cycles rough refraction lobe's samples to draw uniformly on the transmitted side,
+// and how they are drawn.
 //
 // Cycles' rough refraction f checks no facet side (cycles_lobes.h), so it is not zero on pairs
-// that visible-normal sampling never draws. A share s of the samples drawn cosine-weighted on
-// the transmitted side covers those pairs: f |cos θi| / pdf is unbiased for every s in (0, 1),
+// that visible-normal sampling never draws. A share s of the samples drawn uniformly over the
+// transmitted hemisphere covers those pairs: f |cos θi| / pdf is unbiased for every s in (0, 1),
 // and its second moment is about A/(1 − s) + B/s, with A the facet sampler's own second moment
-// and B = ∫ over the uncovered pairs of (f |cos θi|)² / p_cos. The share that minimises it,
+// and B = ∫ over the uncovered pairs of (f |cos θi|)² / p_cover. Uniform, not cosine-weighted:
+// f grows without bound towards grazing exits, where a cosine density's weight π f / s reached
+// ~1000 (fireflies in the harness's transmission scene) and the uniform one's 2π f |cos θi| / s
+// stays bounded by f |cos θi|. The share that minimises it,
 // s* = √B / (√A + √B), runs from ~0 (smooth lobes near normal incidence, where the facets cover
 // nearly all of f; kept at 0.01 or more) to 0.9 (rough, grazing, η near 1, where most of f is
 // on uncovered pairs).
@@ -18,8 +22,20 @@
 
 #include <cstdint>
 
+#include "bxdf/sampling.h"
+
 namespace bxdf {
 namespace cycles {
+
+// A cover sample: uniform over the hemisphere below the surface (z < 0), and its density.
+inline Vec3 sample_refraction_cover(Point2 u) {
+  Vec3 wi = sample_uniform_hemisphere(u);
+  wi.z = -wi.z;
+  return wi;
+}
+inline float refraction_cover_pdf(const Vec3& wi) {
+  return wi.z < 0.0f ? uniform_hemisphere_pdf() : 0.0f;
+}
 
 enum class CoverDistribution : int { kGGX = 0, kBeckmann = 1 };
 
@@ -42,8 +58,8 @@ float refraction_cover_share(CoverDistribution distribution, float alpha, float 
                              float cos_o);
 
 // s* estimated afresh from strata² jittered samples of each kind (seeded, so repeatable): A
-// from the facet sampler of cycles_lobes.h's RefractionLobe, B from cosine-distributed
-// directions below where that sampler has no density. What the table was made with
+// from the facet sampler of cycles_lobes.h's RefractionLobe, B from cover samples
+// (sample_refraction_cover) below where that sampler has no density. What the table was made with
 // (bxdf-refraction-cover-table, 128 strata), clamped to the same range.
 float estimate_cover_share(CoverDistribution distribution, float alpha, float eta, float cos_o,
                            int strata, uint64_t seed);

@@ -12,7 +12,7 @@
 // 0) the pair is turned over and the index inverted, as Cycles does on back faces.
 // Cycles' f is not zero for transmitted pairs that no facet facing wo refracts into (it does
 // not check sides), which visible-normal sampling never draws. So that sample_f covers all of
-// f, a share of the refraction samples is cosine-distributed on the transmitted side and the
+// f, a share of the refraction samples is uniform on the transmitted side and the
 // pdf is that mixture (Cycles reports its eval's pdf, which its sampler does not realise: its
 // images lose the light that only light sampling finds there, a finding of the comparison
 // harness). The share depends on α, η and cos θo (microfacet/refraction_cover.h): as small as
@@ -85,8 +85,7 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
       const float v = std::min((u.x - p_reflect) / (1.0f - p_reflect), 0x1.fffffep-1f);
       const float cover = cover_share(c.wo.z, c.eta);
       if (v < cover) {
-        wi = sample_cosine_hemisphere(Point2(v / cover, u.y));
-        wi.z = -wi.z;
+        wi = cycles::sample_refraction_cover(Point2(v / cover, u.y));
         d.ok = wi.z < 0.0f;
       } else {
         const float v_facet = std::min((v - cover) / (1.0f - cover), 0x1.fffffep-1f);
@@ -104,13 +103,12 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
     const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
     if (c.wi.z > 0.0f) return p_reflect * reflection_.pdf(c.wo, c.wi);
-    const float cosine = c.wi.z < 0.0f ? cosine_hemisphere_pdf(-c.wi.z) : 0.0f;
     const float cover = cover_share(c.wo.z, c.eta);
-    return (1.0f - p_reflect) *
-           (cover * cosine + (1.0f - cover) * refraction_.pdf(c.wo, c.wi, c.eta));
+    return (1.0f - p_reflect) * (cover * cycles::refraction_cover_pdf(c.wi) +
+                                 (1.0f - cover) * refraction_.pdf(c.wo, c.wi, c.eta));
   }
 
-  // The share of refraction samples drawn cosine-weighted (see the file comment), for wo
+  // The share of refraction samples drawn as cover samples (see the file comment), for wo
   // above the surface with relative index eta.
   float cover_share(float cos_o, float eta) const {
     constexpr cycles::CoverDistribution kind = std::is_same_v<Distribution, microfacet::Beckmann>

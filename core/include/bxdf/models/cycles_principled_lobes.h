@@ -138,7 +138,7 @@ struct GTR1Clearcoat {
 // with no check of which side the microfacet faces (pbrt-style code returns 0 there).
 // Visible-normal sampling only produces facets that face wo, so it cannot reach the pairs whose
 // half vector faces away, where this f is still > 0 (13% of the transmitted energy at θo 85°
-// for α 0.16): a share of the samples, cover_share(), is drawn cosine-weighted below the
+// for α 0.16): a share of the samples, cover_share(), is drawn uniformly below the
 // surface, so that the density covers every pair f does and a sampled estimate converges to
 // ∫ f; the share that keeps its variance least depends on α, η and cos θo
 // (microfacet/refraction_cover.h).
@@ -164,20 +164,19 @@ struct GGXRefraction {
   float density(const Vec3& wo, const Vec3& wi) const {
     if (!(wo.z > 0.0f) || !(wi.z < 0.0f)) return 0.0f;
     const float share = cover_share(wo.z);
-    const float cosine = share * -wi.z * kInvPi;
+    const float cover = share * refraction_cover_pdf(wi);
     Vec3 h = wo + wi * eta;
-    if (!normalize_direction(h)) return cosine;
+    if (!normalize_direction(h)) return cover;
     if (h.z < 0.0f) h = -h;
     const float wo_h = dot(wo, h), wi_h = dot(wi, h);
-    if (!(wo_h > 0.0f) || !(wi_h < 0.0f)) return cosine;
+    if (!(wo_h > 0.0f) || !(wi_h < 0.0f)) return cover;
     const float denom = wo_h + eta * wi_h;
-    return (1.0f - share) * ggx.pdf_wh(wo, h) * eta * eta * -wi_h / (denom * denom) + cosine;
+    return (1.0f - share) * ggx.pdf_wh(wo, h) * eta * eta * -wi_h / (denom * denom) + cover;
   }
   bool sample(const Vec3& wo, Point2 u, Vec3* wi) const {
     const float share = cover_share(wo.z);
     if (u.x < share) {
-      *wi = sample_cosine_hemisphere(Point2(std::min(u.x / share, 0x1.fffffep-1f), u.y));
-      wi->z = -wi->z;
+      *wi = sample_refraction_cover(Point2(std::min(u.x / share, 0x1.fffffep-1f), u.y));
       return wi->z < 0.0f;
     }
     u.x = std::min((u.x - share) / (1.0f - share), 0x1.fffffep-1f);
