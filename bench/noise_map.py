@@ -25,11 +25,15 @@ def parse_args():
     p.add_argument("--scene", default="cornell", help="harness scene name (compare/scenes.py)")
     p.add_argument("--spp", type=int, default=64, help="samples per render")
     p.add_argument("--renders", type=int, default=12, help="renders (seeds) per engine")
+    p.add_argument("--first-seed", type=int, default=0,
+                   help="seeds first-seed .. first-seed + renders - 1 (another set of renders)")
     p.add_argument("--reference-spp", type=int, default=1024, help="samples of each reference")
     p.add_argument("--threads", type=int, default=2, help="threads for both engines")
     p.add_argument("--worst", type=int, default=10, help="pixels to list")
     p.add_argument("--save", default=None, help="folder for the .npy maps")
     args = p.parse_args(argv)
+    if args.first_seed < 0:
+        p.error(f"--first-seed must be at least 0, got {args.first_seed}")
     for name in ("spp", "renders", "reference_spp", "threads", "worst"):
         if getattr(args, name) < 1:
             p.error(f"--{name.replace('_', '-')} must be at least 1, got {getattr(args, name)}")
@@ -48,14 +52,15 @@ def main():
                                 os.path.join(work, f"ref_{e}.exr"))[2] for e in engines]
     reference = 0.5 * (refs[0] + refs[1])
     squared = {e: [] for e in engines}
-    for seed in range(args.renders):
+    for seed in range(args.first_seed, args.first_seed + args.renders):
         for e in engines:
             image = side_by_side.render(e, spec, args.spp, seed, args.threads,
                                         os.path.join(work, f"{e}_{seed}.exr"))[2]
             squared[e].append(((image - reference) ** 2).mean(axis=2))
     maps = {e: np.stack(squared[e]) for e in engines}
     mse = {e: float(maps[e].mean()) for e in engines}
-    print(f"noise_map: {args.scene}, {args.renders} renders per engine at {args.spp} spp, "
+    print(f"noise_map: {args.scene}, {args.renders} renders per engine at {args.spp} spp "
+          f"(seeds {args.first_seed}-{args.first_seed + args.renders - 1}), "
           f"{args.threads} threads, reference = mean of both at {args.reference_spp} spp")
     print("  MSE " + ", ".join(f"{e} {mse[e]:.4g}" for e in engines) +
           f"; ratio {mse[engines[0]] / mse[engines[1]]:.3f}; MSE between the references "

@@ -45,6 +45,9 @@ def parse_args():
     p.add_argument("--reference-spp", type=int, default=1024,
                    help="samples of each engine's reference render")
     p.add_argument("--repeats", type=int, default=3, help="renders per engine and sample count")
+    p.add_argument("--first-seed", type=int, default=0,
+                   help="seeds first-seed .. first-seed + repeats - 1 (the same every run unless "
+                        "changed: a heavy-tailed error needs other seeds to be checked)")
     p.add_argument("--res", type=int, nargs=2, metavar=("W", "H"), default=None,
                    help="resolution (default: the scene's)")
     p.add_argument("--json", default=None, help="also write the results to this file")
@@ -52,6 +55,8 @@ def parse_args():
     for name in ("threads", "reference_spp", "repeats"):
         if getattr(args, name) < 1:
             p.error(f"--{name.replace('_', '-')} must be at least 1, got {getattr(args, name)}")
+    if args.first_seed < 0:
+        p.error(f"--first-seed must be at least 0, got {args.first_seed}")
     if any(s < 1 for s in args.spp):
         p.error(f"--spp values must be at least 1, got {args.spp}")
     return args
@@ -161,14 +166,15 @@ def main():
     width, height = spec.resolution
     print(f"side_by_side: scene {args.scene} ({width}x{height}, max_bounces {spec.max_bounces}), "
           f"{args.threads} threads each, {args.repeats} interleaved renders per engine and sample "
-          f"count, reference = mean of both engines at {args.reference_spp} spp; "
+          f"count (seeds {args.first_seed}-{args.first_seed + args.repeats - 1}), reference = mean "
+          f"of both engines at {args.reference_spp} spp; "
           f"materials: {', '.join(f'{k} {v}' for k, v in labels.items())}")
     rows = []
     for spp in args.spp:
         seconds = {e: [] for e in ENGINES}
         cpu_seconds = {e: [] for e in ENGINES}
         mse = {e: [] for e in ENGINES}
-        for r in range(args.repeats):
+        for r in range(args.first_seed, args.first_seed + args.repeats):
             for engine in ENGINES:
                 t, cpu, image = render(engine, spec, spp, r, args.threads, out(f"{engine}_{spp}_{r}"))
                 seconds[engine].append(t)
