@@ -48,9 +48,7 @@ def main():
     spec, _ = side_by_side.set_up_scene(args.scene, None)
     work = tempfile.mkdtemp(prefix="bxdf-noise-map-")
     engines = side_by_side.ENGINES
-    refs = [side_by_side.render(e, spec, args.reference_spp, 9999, args.threads,
-                                os.path.join(work, f"ref_{e}.exr"))[2] for e in engines]
-    reference = 0.5 * (refs[0] + refs[1])
+    refs, reference = side_by_side.render_references(spec, args.reference_spp, args.threads, work)
     squared = {e: [] for e in engines}
     for seed in range(args.first_seed, args.first_seed + args.renders):
         for e in engines:

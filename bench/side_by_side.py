@@ -125,6 +125,14 @@ def render(engine, spec, spp, seed, threads, path, cycles_pattern=None):
     return seconds, cpu_seconds, image
 
 
+def render_references(spec, spp, threads, folder):
+    """Each engine's `spp` render (seed 9999, apart from the compared renders' seeds) and their
+    mean, the converged reference that favours neither engine: (per-engine images, mean)."""
+    references = [render(e, spec, spp, 9999, threads, os.path.join(folder, f"ref_{e}.exr"))[2]
+                  for e in ENGINES]
+    return references, 0.5 * (references[0] + references[1])
+
+
 def bootstrap_interval(mse_b, mse_c, seconds_b, seconds_c, rounds=2000, seed=1):
     """The 5th and 95th percentiles of MSE x time ratio over bootstrap resamples of each
     engine's renders (their MSEs and times resampled together, as the ratio is computed)."""
@@ -160,9 +168,7 @@ def main():
     work = tempfile.mkdtemp(prefix="bxdf-side-by-side-")
     out = lambda tag: os.path.join(work, f"{tag}.exr")  # noqa: E731
 
-    references = [render(e, spec, args.reference_spp, 9999, args.threads, out(f"ref_{e}"))[2]
-                  for e in ENGINES]
-    reference = 0.5 * (references[0] + references[1])
+    _, reference = render_references(spec, args.reference_spp, args.threads, work)
     width, height = spec.resolution
     print(f"side_by_side: scene {args.scene} ({width}x{height}, max_bounces {spec.max_bounces}), "
           f"{args.threads} threads each, {args.repeats} interleaved renders per engine and sample "
