@@ -4,8 +4,9 @@ Renders a harness scene with both engines (set up as bench/side_by_side.py sets 
 threads), `--renders` seeds each at `--spp`, against the mean of both engines' `--reference-spp`
 renders, and prints each engine's MSE, how much of BXDF_LAB's excess squared error the worst
 100 pixels hold, and those pixels with each engine's largest single-render error (a firefly
-shows as one render far off where the other engine never is). `--save DIR` writes the maps as
-.npy (reference, and each engine's per-render squared error, renders x H x W).
+shows as one render far off where the other engine never is). `--save DIR` writes .npy files:
+the mean reference, and per engine its own reference, its renders (renders x H x W x 3) and
+their squared error (renders x H x W).
 
     blender -b --factory-startup --python-exit-code 1 --python bench/noise_map.py -- \\
         --scene sweep_principled_transmission --spp 64 --renders 12
@@ -49,13 +50,13 @@ def main():
     work = tempfile.mkdtemp(prefix="bxdf-noise-map-")
     engines = side_by_side.ENGINES
     refs, reference = side_by_side.render_references(spec, args.reference_spp, args.threads, work)
-    squared = {e: [] for e in engines}
+    images = {e: [] for e in engines}
     for seed in range(args.first_seed, args.first_seed + args.renders):
         for e in engines:
-            image = side_by_side.render(e, spec, args.spp, seed, args.threads,
-                                        os.path.join(work, f"{e}_{seed}.exr"))[2]
-            squared[e].append(((image - reference) ** 2).mean(axis=2))
-    maps = {e: np.stack(squared[e]) for e in engines}
+            images[e].append(side_by_side.render(e, spec, args.spp, seed, args.threads,
+                                                 os.path.join(work, f"{e}_{seed}.exr"))[2])
+    images = {e: np.stack(images[e]) for e in engines}
+    maps = {e: ((images[e] - reference) ** 2).mean(axis=3) for e in engines}
     mse = {e: float(maps[e].mean()) for e in engines}
     print(f"noise_map: {args.scene}, {args.renders} renders per engine at {args.spp} spp "
           f"(seeds {args.first_seed}-{args.first_seed + args.renders - 1}), "
@@ -80,7 +81,9 @@ def main():
     if args.save:
         os.makedirs(args.save, exist_ok=True)
         np.save(os.path.join(args.save, f"{args.scene}_reference.npy"), reference)
-        for e in engines:
+        for e, own_reference in zip(engines, refs):
+            np.save(os.path.join(args.save, f"{args.scene}_{e}_reference.npy"), own_reference)
+            np.save(os.path.join(args.save, f"{args.scene}_{e}_renders.npy"), images[e])
             np.save(os.path.join(args.save, f"{args.scene}_{e}_squared_error.npy"), maps[e])
 
 
