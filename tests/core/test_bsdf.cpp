@@ -151,7 +151,7 @@ TEST(BSDF, SampleWeightOfALambertianMixtureIsTheTotalAlbedo) {
 }
 
 TEST(BSDF, SelectsComponentWithFirstNumberAndRemapsIt) {
-  const Lambertian lam(RGB(0.5f));
+  const Lambertian lam(RGB(1.0f));  // white: its sample weight is its weight (see below)
   const TestMirror mirror(RGB(0.9f));
   const Frame fr = tilted_frame();
   BSDF bsdf(fr, fr.n);
@@ -178,7 +178,30 @@ TEST(BSDF, SelectsComponentWithFirstNumberAndRemapsIt) {
   EXPECT_NEAR(dot(second.wi, mirrored), 1.0f, 1e-5f);
   expect_rgb_near(second.f * (abs_dot(second.wi, fr.n) / second.pdf), RGB(1.8f), 1e-4f);
   // Delta lobes have no f or pdf for given directions.
-  EXPECT_NEAR(bsdf.f(wo, mirrored).r, 0.5f * kInvPi, 1e-6f);
+  EXPECT_NEAR(bsdf.f(wo, mirrored).r, kInvPi, 1e-6f);
+}
+
+TEST(BSDF, PicksComponentsByTheirColourAsCyclesSampleWeights) {
+  // Cycles folds a closure's Color into its weight, so a Mix (0.65 / 0.35) of a dark green
+  // Diffuse and a white Glossy samples the Glossy with 0.35 / (0.65 * 0.3 + 0.35) = 0.642.
+  // The mixture pdf weighs the components alike, and f is unchanged.
+  const Lambertian diffuse(RGB(0.2f, 0.5f, 0.2f));
+  const TestMirror mirror(RGB(1.0f));
+  EXPECT_FLOAT_EQ(diffuse.closure_sample_weight(), 0.3f);
+  EXPECT_FLOAT_EQ(mirror.closure_sample_weight(), 1.0f);  // no Color folded: the default
+  const Frame fr = tilted_frame();
+  BSDF bsdf(fr, fr.n);
+  bsdf.add(&diffuse, RGB(0.65f));
+  bsdf.add(&mirror, RGB(0.35f));
+  const float diffuse_share = 0.65f * 0.3f / (0.65f * 0.3f + 0.35f);
+  const Vec3 wo = normalize(fr.n + fr.s * 0.3f), wi = normalize(fr.n + fr.t * 0.4f);
+  EXPECT_NEAR(bsdf.pdf(wo, wi), diffuse_share * dot(wi, fr.n) * kInvPi, 1e-6f);
+  expect_rgb_near(bsdf.f(wo, wi), RGB(0.2f, 0.5f, 0.2f) * (0.65f * kInvPi), 1e-6f);
+  // u.x below the diffuse share picks the Diffuse, above it the mirror (pdf: its chance).
+  EXPECT_FALSE(bsdf.sample_f(wo, Point2(diffuse_share - 0.01f, 0.3f)).is_delta());
+  const BSDFSample mirrored = bsdf.sample_f(wo, Point2(diffuse_share + 0.01f, 0.3f));
+  ASSERT_TRUE(mirrored.valid() && mirrored.is_delta());
+  EXPECT_NEAR(mirrored.pdf, 1.0f - diffuse_share, 1e-6f);
 }
 
 TEST(BSDF, FlagMaskLimitsTheComponents) {

@@ -3,7 +3,8 @@
 // It moves directions between world space and the local frames, uses the geometric normal to
 // decide whether a pair of directions is a reflection or a transmission (so that shading
 // normals cannot leak light through a surface), and picks one component to sample in
-// proportion to its sample weight, the average of its RGB weight (Cycles' sample_weight).
+// proportion to its sample weight, the average of its RGB weight times the colour Cycles folds
+// into a closure's weight (BxDF::closure_sample_weight): Cycles' sample_weight.
 //
 // A BSDF is built per hit, on the stack: it holds non-owning pointers to BxDFs that the scene
 // owns (as shared BxDFPtrs) and never allocates.

@@ -117,6 +117,8 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     return cycles::refraction_cover_share(kind, refraction_.distribution.alpha_x, eta, cos_o);
   }
 
+  float closure_sample_weight() const override { return color_.average(); }
+
  private:
   CyclesDielectricNode node_;
   RGB color_;
@@ -157,6 +159,8 @@ class CyclesSharpDielectric final : public BxDFImpl<CyclesSharpDielectric> {
     return s;
   }
   float density(const Vec3&, const Vec3&) const { return 0.0f; }
+
+  float closure_sample_weight() const override { return color_.average(); }
 
  private:
   CyclesDielectricNode node_;

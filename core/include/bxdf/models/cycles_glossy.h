@@ -69,6 +69,8 @@ class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
   const Distribution& distribution() const { return lobe_.distribution; }
   bool is_mirror() const { return mirror_; }
 
+  float closure_sample_weight() const override { return color_.average(); }
+
  private:
   RGB color_;
   cycles::ReflectionLobe<Distribution> lobe_;

@@ -68,6 +68,8 @@ class CyclesGlossyAshikhminShirley final : public BxDFImpl<CyclesGlossyAshikhmin
   float exponent_x() const { return n_x_; }
   float exponent_y() const { return n_y_; }
 
+  float closure_sample_weight() const override { return color_.average(); }
+
  private:
   // cos θh^e, θh clamped as Cycles clamps it.
   float lobe(const Vec3& h) const {

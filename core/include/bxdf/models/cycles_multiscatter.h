@@ -57,6 +57,8 @@ class CyclesMultiscatter final : public BxDFImpl<CyclesMultiscatter<Lobe>> {
   float density(const Vec3& wo, const Vec3& wi) const { return lobe_.density(wo, wi); }
   bool sample_f_is_exact() const override { return !kWalks; }
 
+  float closure_sample_weight() const override { return color_.average(); }
+
  private:
   static microfacet::MultiscatterSetup with_color(microfacet::MultiscatterSetup s, const RGB& c) {
     s.color = c;

@@ -38,6 +38,8 @@ class CyclesOrenNayar final : public BxDFImpl<CyclesOrenNayar> {
   float a() const { return a_; }
   float b() const { return b_; }
 
+  float closure_sample_weight() const override { return color_.average(); }
+
  private:
   RGB color_;
   float a_ = kInvPi, b_ = 0.0f;

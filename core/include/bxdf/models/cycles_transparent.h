@@ -28,6 +28,8 @@ class CyclesTransparent final : public BxDFImpl<CyclesTransparent> {
 
   const RGB& color() const { return color_; }
 
+  float closure_sample_weight() const override { return color_.average(); }
+
  private:
   RGB color_;
 };

@@ -45,6 +45,8 @@ class CyclesVelvet final : public BxDFImpl<CyclesVelvet> {
     return same_hemisphere(wo, wi) ? uniform_hemisphere_pdf() : 0.0f;
   }
 
+  float closure_sample_weight() const override { return color_.average(); }
+
  private:
 
   RGB color_;

@@ -23,6 +23,8 @@ class Lambertian final : public BxDFImpl<Lambertian> {
   RGB rho_hd(const Vec3&, int, uint64_t) const override { return r_; }
   RGB rho_hh(int, uint64_t) const override { return r_; }
   const RGB& reflectance() const { return r_; }
+  // Cycles' Diffuse BSDF folds its Color into the closure weight (BxDF::closure_sample_weight).
+  float closure_sample_weight() const override { return r_.average(); }
 
  private:
   RGB r_, r_over_pi_;

@@ -31,6 +31,8 @@ class LambertianTransmission final : public BxDFImpl<LambertianTransmission> {
 
   RGB rho_hd(const Vec3&, int, uint64_t) const override { return t_; }
   RGB rho_hh(int, uint64_t) const override { return t_; }
+  // Cycles' Translucent BSDF folds its Color into the closure weight (closure_sample_weight).
+  float closure_sample_weight() const override { return t_.average(); }
   const RGB& transmittance() const { return t_; }
 
  private:
