@@ -50,8 +50,7 @@ void BSDF::add(const BxDF* component, const RGB& weight, const Frame* frame, boo
   components_[count_] = component;
   weights_[count_] = weight;
   // Cycles' sample_weight: the average of the closure's whole weight, its Color included.
-  sample_weights_[count_] = (weight.r + weight.g + weight.b) * (1.0f / 3.0f) *
-                            component->closure_sample_weight();
+  sample_weights_[count_] = weight.average() * component->closure_sample_weight();
   frames_[count_] = frame ? *frame : frame_;
   const bool perturbed = frame && !(frame->n == frame_.n);
   bump_shadowing_[count_] = !perturbed    ? BumpShadowing::None

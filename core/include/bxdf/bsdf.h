@@ -78,7 +78,7 @@ class BSDF {
   // The same sum with each term times |cos θi| about its component's normal.
   RGB f_cos(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask = kAll) const;
   // Pdf of sample_f's mixture: the matching components' pdfs weighted by their sample weights
-  // (with unit weights, the average).
+  // (with equal sample weights, the average).
   float pdf(const Vec3& wo_world, const Vec3& wi_world, uint32_t mask = kAll) const;
   // f_cos(wo, wi) and pdf(wo, wi) (every component) in one pass over the components, each
   // evaluated once for both (f_f_cos_pdf): a light sample's pair. The same values as the two

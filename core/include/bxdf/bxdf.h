@@ -95,13 +95,14 @@ class BxDF {
   // darkens that part by bump_shadowing_term when the closure's normal is perturbed; the
   // BSDF asks for it only when has_diffuse_closure_lobes(). Same argument rules as f.
   virtual bool has_diffuse_closure_lobes() const { return false; }
+  virtual RGB diffuse_closure_f(const Vec3& /*wo*/, const Vec3& /*wi*/) const { return RGB(0.0f); }
+
   // What Cycles folds into this closure's sample weight beyond the weight the closure is added
   // with: its Color input's average (svm_node_closure_bsdf makes the closure weight mix weight x
   // Color, and bsdf_alloc's sample_weight is that weight's average). A BSDF picks its
   // components by it, so a Mix of a dark Diffuse and a white Glossy samples the Glossy more,
   // as Cycles does. 1 where no Color is folded so (the other models).
   virtual float closure_sample_weight() const { return 1.0f; }
-  virtual RGB diffuse_closure_f(const Vec3& /*wo*/, const Vec3& /*wi*/) const { return RGB(0.0f); }
 
   // ρhd(wo) = ∫ f |cos θi| dωi and ρhh; Monte Carlo (stratified, seeded) unless a model knows better.
   virtual RGB rho_hd(const Vec3& wo, int n_samples, uint64_t seed = 0) const;
