@@ -60,6 +60,13 @@ def cycles_quirks(spec: SceneSpec, material) -> list:
         quirks.append(f"{material.name}: Cycles weighs its multiscatter glass's eval and "
                       "sampling walks (which disagree) by mf_glass_pdf in MIS, BXDF_LAB by a "
                       "normalised pdf, which light found by both light and BSDF sampling shows")
+    # Rough refraction: Cycles draws it from its facets alone and so do we, but Cycles' MIS pdf
+    # (its eval's) is not zero on the pairs no facet reaches, where light sampling alone finds
+    # light; BXDF_LAB's is its cover density there, so each keeps another part of that light.
+    if has_rough_refraction(material) and (soft_lighting(spec) or any(spec.world_color)):
+        quirks.append(f"{material.name}: Cycles weighs the light sampling finds on the rough "
+                      "refraction's pairs that no facet reaches by its eval's pdf, which its "
+                      "sampler never realises; BXDF_LAB by its cover density")
     if (material.model == "cycles_principled" and params.get("clearcoat", 0.0) > 0.0
             and light_found_by_sampling):
         quirks.append(f"{material.name}: Cycles samples the clearcoat with GGX but reports "
@@ -72,6 +79,27 @@ def is_multiscatter(material) -> bool:
     return (material.model in ("cycles_glossy", "cycles_glass", "cycles_refraction",
                                "cycles_principled")
             and material.params.get("distribution") == "multi_ggx")
+
+
+def has_rough_refraction(material) -> bool:
+    """A rough (not singular) GGX or Beckmann refraction closure, as the models build it:
+    Glass and Refraction with roughness² > ~3e-4, the Principled's glass when it is not one
+    multiscatter closure (cycles_glass.h, cycles_principled.h)."""
+    params = material.params
+    distribution = params.get("distribution", "ggx")
+    if material.model in ("cycles_glass", "cycles_refraction"):
+        roughness = params.get("roughness", 0.0)
+        return distribution in ("ggx", "beckmann") and roughness ** 4 > 1e-7
+    if material.model == "cycles_principled":
+        transmission = params.get("transmission", 0.0) * (1.0 - params.get("metallic", 0.0))
+        if transmission <= 1e-5:
+            return False
+        roughness = params.get("roughness", 0.5)
+        if distribution == "multi_ggx" and roughness > 5e-2:
+            return False  # one multiscatter glass closure
+        refraction = 1.0 - (1.0 - roughness) * (1.0 - params.get("transmission_roughness", 0.0))
+        return refraction ** 4 > 1e-7
+    return False
 
 
 def is_multiscatter_glass(material) -> bool:

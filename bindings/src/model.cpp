@@ -272,9 +272,11 @@ Delta (specular) lobes give 0 here; use sample_f.)doc")
 The solid-angle density with which sample_f(wo, .) chooses `wi`. Delta lobes give 0.)doc")
       .def_property_readonly(
           "sample_f_is_exact", [](const Model& self) { return self->sample_f_is_exact(); },
-          "False for a model whose sample_f runs Cycles' multiscatter GGX sampling walk (its f "
-          "is then the walk's weight times pdf/|cos theta_i|, not f(wo, wi)); "
-          "sample_f(..., exact=True) is its exact importance sampler.")
+          "False for a model whose sample_f samples as Cycles does where that is not exact "
+          "importance sampling of f: the multiscatter GGX sampling walk, and rough refraction "
+          "drawn from its facets alone (its f is then the sample's weight times "
+          "pdf/|cos theta_i|, not f(wo, wi)); sample_f(..., exact=True) is its exact "
+          "importance sampler.")
       .def("sample_f", &model_sample_f, py::arg("wo"), py::arg("u"), py::arg("exact") = false,
            R"doc(sample_f(wo, u, exact=False) -> (wi (N, 3), f (N, 3), pdf (N,)), all float32
 
@@ -284,8 +286,10 @@ ValueError). Returns the unit direction wi, the value f(wo, wi) and its density 
 delta lobe pdf is 1 and f is the seed's weight. When no sample exists (pdf = 0), wi and f
 are 0. A multiscatter GGX model (sample_f_is_exact False) samples as Cycles does, with its
 random walk: f |cos theta_i| / pdf is the walk's weight and pdf is pdf(wo, wi) (Cycles'
-approximate pdf), so f differs from f(wo, wi); exact=True draws wi from pdf instead, with f
-and pdf those of wi.)doc")
+approximate pdf), so f differs from f(wo, wi). So does a rough refraction (Glass, Refraction,
+a Principled BSDF's glass): Cycles draws it from its facets alone, which never reach some pairs
+where f > 0; f |cos theta_i| / pdf is f over the density of that draw and pdf is pdf(wo, wi).
+exact=True draws wi from pdf instead, with f and pdf those of wi.)doc")
       .def("rho", &model_rho, py::arg("wo"), py::arg("n_samples"), py::arg("seed") = 0,
            R"doc(rho(wo, n_samples, seed=0) -> ndarray (N, 3) float32
 

@@ -162,7 +162,8 @@ def test_measured_cycles_quirks_make_their_pairings_approximate():
                                                          "metallic": 0.0}))
         for o in multi.objects), lights=(AreaLight((0.0, -3.0, 3.0), (0.0, 1.0, -1.0), "SQUARE", 100.0, 1.0),))
     reasons = pairings.approximations(glass, "BXDF_LAB", "CYCLES")
-    assert len(reasons) == 5 and all("mf_glass_pdf" in r for r in reasons)
+    # (The single-scatter row's glass is a rough refraction: its reasons come below.)
+    assert sum("mf_glass_pdf" in r for r in reasons) == 5 and len(reasons) == 10
     direct = scenes.get("sweep_principled_multiscatter_direct")
     assert direct.has_analytic_truth()
     assert pairings.label(direct, "BXDF_LAB", "CYCLES") == "exact"
@@ -178,6 +179,16 @@ def test_measured_cycles_quirks_make_their_pairings_approximate():
     world = scenes.get("principled_clearcoat_world")
     assert pairings.label(world, "BXDF_LAB", "CYCLES") == "approximate"
     assert any("GTR1" in r for r in pairings.approximations(world, "BXDF_LAB", "CYCLES"))
+    # Rough refraction: exact under point lights in a black world (no MIS), approximate where
+    # light sampling and BSDF sampling both find the light (a lit world here).
+    transmission = scenes.get("sweep_principled_transmission")
+    assert pairings.label(transmission, "BXDF_LAB", "CYCLES") == "exact"
+    lit = replace(transmission, world_color=(0.2, 0.2, 0.2))
+    reasons = pairings.approximations(lit, "BXDF_LAB", "CYCLES")
+    # Every sphere but the one with no transmission (row 3, column 1).
+    assert len(reasons) == 14 and all("no facet reaches" in r for r in reasons)
+    sharp = scenes.get("cycles_glass_room").objects[-5].material  # glass_sharp
+    assert sharp.name == "glass_sharp" and not pairings.has_rough_refraction(sharp)
 
 
 def test_the_analytic_tangent_is_cycles_default_radial_one():

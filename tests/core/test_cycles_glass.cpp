@@ -276,3 +276,83 @@ TEST(CyclesGlass, MultiscatterRefractionIsTheGlassWalksTransmittedPart) {
   }
   EXPECT_GT(transmitted, 50);
 }
+
+// Cycles draws a rough refraction from its facets alone, so the light of the pairs no facet
+// facing wo refracts into reaches its images only by light sampling. sample_f does the same
+// (for Glass, Refraction and the Principled BSDF's glass), its weight f·|cos θi| over the
+// density of that draw: its mean is ∫ f |cos θi| over the pairs the facets reach, while the
+// exact sampler's mean is ∫ f |cos θi| over every pair. Measured here with the exact sampler
+// split by whether a pair is one the facets reach (pdf of the facet draw > 0).
+TEST(CyclesGlass, CyclesSampleDrawsTheRefractionFromItsFacetsAlone) {
+  ParamSet principled;
+  principled.set("transmission", 1.0);
+  principled.set("roughness", 0.2);
+  principled.set("transmission_roughness", 1.0);
+  principled.set("base_color", RGBValue{1, 1, 1});
+  const struct {
+    const char* label;
+    BxDFPtr model;
+    double eta;  // index below over index above
+  } cases[] = {
+      {"glass ggx 0.8", make_dielectric("cycles_glass", "ggx", 0.8, 1.45), 1.45},
+      {"refraction beckmann 0.7", make_dielectric("cycles_refraction", "beckmann", 0.7, 1.3), 1.3},
+      {"principled transmission roughness 1", make("cycles_principled", principled), 1.45},
+  };
+  for (const auto& c : cases) {
+    EXPECT_FALSE(c.model->sample_f_is_exact()) << c.label;
+    for (const double cos_o : {0.9, 0.25, -0.6}) {
+      const Vec3 wo(float(std::sqrt(1 - cos_o * cos_o)), 0.0f, float(cos_o));
+      // wo's side: the pair turned so that wo is above, the index inverted below.
+      const double eta = cos_o > 0 ? c.eta : 1.0 / c.eta;
+      const auto reached = [&](const Vec3& wi) {
+        const double s = cos_o > 0 ? 1.0 : -1.0;
+        const D3 I{wo.x, wo.y, s * wo.z}, L{wi.x, wi.y, s * wi.z};
+        if (L.z > 0) return true;  // reflection: every pair
+        const D3 ht{-(eta * L.x + I.x), -(eta * L.y + I.y), -(eta * L.z + I.z)};
+        const double up = ht.z < 0 ? -1.0 : 1.0;
+        return up * dot3(ht, I) > 0 && up * dot3(ht, L) < 0;
+      };
+      constexpr int kN = 400000;
+      PCG32 rng(31);
+      double cycles_sum = 0, cycles_sq = 0, exact_sum = 0, exact_sq = 0, reached_sum = 0,
+             reached_sq = 0;
+      int unreached_draws = 0;
+      for (int i = 0; i < kN; ++i) {
+        const Point2 u(rng.uniform(), rng.uniform());
+        const BxDFSample s = c.model->sample_f(wo, u);
+        if (s.valid()) {
+          const double w = s.f.g * std::fabs(s.wi.z) / s.pdf;
+          cycles_sum += w;
+          cycles_sq += w * w;
+          unreached_draws += !reached(s.wi);
+          // pdf is still the mixture's, the density MIS weighs with.
+          EXPECT_NEAR(s.pdf, c.model->pdf(wo, s.wi), 1e-3 * s.pdf) << c.label;
+        }
+        const BxDFSample e = c.model->sample_f_exact(wo, u);
+        if (e.valid()) {
+          const double w = e.f.g * std::fabs(e.wi.z) / e.pdf;
+          exact_sum += w;
+          exact_sq += w * w;
+          if (reached(e.wi)) {
+            reached_sum += w;
+            reached_sq += w * w;
+          }
+        }
+      }
+      const auto mean_and_error = [](double sum, double sq) {
+        const double mean = sum / kN;
+        return std::pair<double, double>{mean, std::sqrt((sq / kN - mean * mean) / kN)};
+      };
+      const auto [cycles_mean, cycles_error] = mean_and_error(cycles_sum, cycles_sq);
+      const auto [reached_mean, reached_error] = mean_and_error(reached_sum, reached_sq);
+      const auto [exact_mean, exact_error] = mean_and_error(exact_sum, exact_sq);
+      SCOPED_TRACE(std::string(c.label) + " cos θo " + std::to_string(cos_o));
+      EXPECT_EQ(unreached_draws, 0);
+      EXPECT_NEAR(cycles_mean, reached_mean, 5 * std::hypot(cycles_error, reached_error));
+      // Towards grazing the unreached pairs hold light (so the case tells the samplers apart).
+      if (cos_o == 0.25) {
+        EXPECT_GT(exact_mean - reached_mean, 10 * exact_error);
+      }
+    }
+  }
+}

@@ -70,15 +70,15 @@ struct Moments {
   double mean = 0.0, second = 0.0;
 };
 
-// The sampled estimate of ∫ f |cos θi| for a cycles_refraction model (its own sampler) and for
-// the same lobe with a fixed cosine share, on the same stratified numbers.
+// The sampled estimate of ∫ f |cos θi| for a cycles_refraction model (its exact sampler, the
+// one with the cover) and for the same lobe with a fixed share, on the same stratified numbers.
 Moments model_moments(const BxDF& m, const Vec3& wo, int strata) {
   Moments out;
   PCG32 rng(3);
   for (int y = 0; y < strata; ++y)
     for (int x = 0; x < strata; ++x) {
-      const BxDFSample s = m.sample_f(wo, Point2((x + rng.uniform()) / strata,
-                                                 (y + rng.uniform()) / strata));
+      const BxDFSample s = m.sample_f_exact(wo, Point2((x + rng.uniform()) / strata,
+                                                       (y + rng.uniform()) / strata));
       if (!s.valid()) continue;
       const double w = double(s.f.r) * std::fabs(s.wi.z) / s.pdf;
       out.mean += w;

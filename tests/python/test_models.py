@@ -239,13 +239,19 @@ def test_sampled_directions_agree_with_f_and_pdf(variant, rng, exact):
             np.testing.assert_array_equal(a, b)
 
 
-def test_only_multiscatter_ggx_samples_by_a_walk():
+def test_only_cycles_walks_and_rough_refractions_sample_as_cycles_does():
     for name in bxdf.models():
         assert bxdf.make(name).sample_f_is_exact, name
     for name in ("cycles_glossy", "cycles_glass", "cycles_principled"):
         assert not bxdf.make(name, distribution="multi_ggx", roughness=0.5).sample_f_is_exact, name
     # cycles_refraction's multi_ggx has no Cycles closure to follow: exact sampling.
     assert bxdf.make("cycles_refraction", distribution="multi_ggx", roughness=0.5).sample_f_is_exact
+    # A rough refraction is drawn from its facets alone, as Cycles draws it; sharp ones are exact.
+    for name in ("cycles_glass", "cycles_refraction"):
+        assert not bxdf.make(name, distribution="ggx", roughness=0.3).sample_f_is_exact, name
+        assert bxdf.make(name, distribution="sharp").sample_f_is_exact, name
+    assert not bxdf.make("cycles_principled", transmission=1.0, roughness=0.3).sample_f_is_exact
+    assert bxdf.make("cycles_principled", transmission=1.0, roughness=0.0).sample_f_is_exact
 
 
 def test_awkward_directions_give_finite_nonnegative_results(variant):

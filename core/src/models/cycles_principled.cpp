@@ -273,7 +273,7 @@ float CyclesPrincipled::lobe_density(int k, const Vec3& wo, const Vec3& wi, floa
 }
 
 bool CyclesPrincipled::lobe_sample(int k, const Vec3& wo, Point2 u, float eta, bool back_face,
-                                   Vec3* wi) const {
+                                   bool cover, Vec3* wi) const {
   switch (k) {
     case kDiffuseClosure:
     case kSheenClosure:
@@ -302,11 +302,17 @@ bool CyclesPrincipled::lobe_sample(int k, const Vec3& wo, Point2 u, float eta, b
     case kGlassRefractionClosure: {
       cycles::GGXRefraction lobe = s_.glass_refraction;
       lobe.eta = eta;
-      return lobe.sample(wo, u, wi);
+      return lobe.sample(wo, u, wi, cover);
     }
     case kClearcoatClosure: return s_.clearcoat_lobe.sample(wo, u, wi);
     default: return false;
   }
+}
+
+float CyclesPrincipled::refraction_cover_excess(const Vec3& wo, const Vec3& wi, float eta) const {
+  cycles::GGXRefraction lobe = s_.glass_refraction;
+  lobe.eta = eta;
+  return lobe.density(wo, wi) - lobe.facet_density(wo, wi);
 }
 
 RGB CyclesPrincipled::eval_upper(const Vec3& wo, const Vec3& wi, const Closures& c,
@@ -385,7 +391,7 @@ RGB CyclesPrincipled::eval_density(Vec3 wo, Vec3 wi, float* density_out) const {
   return s_.single_scatter ? kernel_f : eval_upper(wo, wi, c, back);
 }
 
-BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool walk) const {
+BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool as_cycles) const {
   BxDFSample s;
   if (wo.z == 0.0f) return s;
   const bool back = wo.z < 0.0f;
@@ -428,7 +434,7 @@ BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool walk) const
     // A multiscatter closure is sampled as Cycles does, with its walk: its eval is weight ×
     // walk throughput × its approximate pdf, plus the other closures' eval there
     // (shader_bsdf_sample_closure with _shader_bsdf_multi_eval), over the mixture's pdf.
-    const bool by_walk = walk && walks(k);
+    const bool by_walk = as_cycles && walks(k);
     microfacet::WalkSample w;
     if (by_walk) {
       const bool specular = k == kSpecularClosure;
@@ -436,7 +442,7 @@ BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool walk) const
                    : (back ? s_.glass_ms_back : s_.glass_ms).sample_walk(wo, v);
       if (!w.ok) return s;
       wi = specular ? from_tangent(w.wi) : w.wi;
-    } else if (!lobe_sample(k, wo, v, c.eta, back, &wi)) {
+    } else if (!lobe_sample(k, wo, v, c.eta, back, !as_cycles, &wi)) {
       return s;
     }
     // f of the multiple-scattering lobes hashes the directions: use the bits f() will see.
@@ -450,6 +456,14 @@ BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool walk) const
       s.f = c.weight[k] * w.weight * (own_pdf / std::fabs(wi.z)) + eval_upper(wo, wi, c, back, k);
     } else {
       s.f = back ? eval(Vec3(wo.x, wo.y, -wo.z), Vec3(wi.x, wi.y, -wi.z)) : eval(wo, wi);
+      if (as_cycles && has_rough_refraction() && wi.z < 0.0f) {
+        // Drawn without the refraction's cover samples: the weight is f over the density of
+        // what was drawn, which lacks the cover's share; pdf stays the mixture's (for MIS).
+        const float drawn = s.pdf - c.sample_weight[kGlassRefractionClosure] / c.sample_total *
+                                        refraction_cover_excess(wo, wi, c.eta);
+        if (!(drawn > 0.0f)) return BxDFSample();
+        s.f *= s.pdf / drawn;
+      }
     }
     s.flags = (wi.z > 0.0f ? kReflection : kTransmission) |
               (k == kDiffuseClosure || k == kSheenClosure ? kDiffuse : kGlossy);

@@ -2,8 +2,10 @@
 // and how they are drawn.
 //
 // Cycles' rough refraction f checks no facet side (cycles_lobes.h), so it is not zero on pairs
-// that visible-normal sampling never draws. A share s of the samples drawn uniformly over the
-// transmitted hemisphere covers those pairs: f |cos θi| / pdf is unbiased for every s in (0, 1),
+// that visible-normal sampling never draws. Cycles' own sampler (and the models' sample_f,
+// which the renderer uses) leaves them to light sampling; the exact importance sampler
+// (sample_f_exact) covers them with a share s of its samples drawn uniformly over the
+// transmitted hemisphere: f |cos θi| / pdf is unbiased for every s in (0, 1),
 // and its second moment is about A/(1 − s) + B/s, with A the facet sampler's own second moment
 // and B = ∫ over the uncovered pairs of (f |cos θi|)² / p_cover. The share that minimises it,
 // s* = √B / (√A + √B), runs from ~0 (smooth lobes near normal incidence, where the facets cover
@@ -14,7 +16,7 @@
 // cos θo 0.48); the uniform density's weight 2π f |cos θi| / s has the cosine to temper it
 // (largest seen 86, second moment 7.8x smaller there).
 // A fixed share of 1/4 cost the harness's glass room 1.3x the variance per rough refraction
-// (measured with the cosine cover).
+// (measured with the cosine cover, when the renderer still drew the cover).
 //
 // refraction_cover_table.inc holds s* over √α, ln η and cos θo for GGX and Beckmann, made by
 // `bxdf-refraction-cover-table` (core/tools/refraction_cover_table.cpp) from the lobes

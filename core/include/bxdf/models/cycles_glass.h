@@ -11,11 +11,12 @@
 // `ior` is the index below the surface (z < 0) over the index above; seen from below (wo.z <
 // 0) the pair is turned over and the index inverted, as Cycles does on back faces.
 // Cycles' f is not zero for transmitted pairs that no facet facing wo refracts into (it does
-// not check sides), which visible-normal sampling never draws. So that sample_f covers all of
-// f, a share of the refraction samples is uniform on the transmitted side and the
-// pdf is that mixture (Cycles reports its eval's pdf, which its sampler does not realise: its
-// images lose the light that only light sampling finds there, a finding of the comparison
-// harness). The share depends on α, η and cos θo (microfacet/refraction_cover.h): as small as
+// not check sides), which visible-normal sampling never draws. So that the exact sampler
+// (sample_f_exact) covers all of f, a share of its refraction samples is uniform on the
+// transmitted side and the pdf is that mixture. Cycles' sampler draws the facets alone, so its
+// images lose the light that only light sampling finds on those pairs (a finding of the
+// comparison harness), and its indirect light through them: sample_f draws as Cycles does
+// (sample_f_is_exact is false), its weight f·|cos θi| over the density of that draw. The share depends on α, η and cos θo (microfacet/refraction_cover.h): as small as
 // 0.01 where the facets cover nearly all of f, up to 0.9 where they cover little of it.
 // Cycles' singular cases become the delta form (CyclesSharpDielectric): the Sharp distribution,
 // αx·αy <= 1e-7, and a refraction index within 1e-4 of 1 (Cycles then samples a delta
@@ -72,32 +73,11 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     return color_ * f;
   }
 
-  DirectionSample sample_direction(const Vec3& wo, Point2 u) const {
-    DirectionSample d;
-    if (wo.z == 0.0f) return d;
-    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wo, ior_);
-    const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
-    Vec3 wi;
-    if (u.x < p_reflect) {
-      d.ok = reflection_.sample(c.wo, Point2(u.x / p_reflect, u.y), &wi);
-      d.flags = kReflection | kGlossy;
-    } else {
-      const float v = std::min((u.x - p_reflect) / (1.0f - p_reflect), 0x1.fffffep-1f);
-      const float cover = cover_share(c.wo.z, c.eta);
-      if (v < cover) {
-        wi = cycles::sample_refraction_cover(Point2(v / cover, u.y));
-        d.ok = wi.z < 0.0f;
-      } else {
-        const float v_facet = std::min((v - cover) / (1.0f - cover), 0x1.fffffep-1f);
-        d.ok = refraction_.sample(c.wo, Point2(v_facet, u.y), c.eta, &wi);
-      }
-      d.flags = kTransmission | kGlossy;
-    }
-    d.wi = c.mirrored ? Vec3(wi.x, wi.y, -wi.z) : wi;
-    // Grazing rough refraction is steep in float: return the bits f() will see.
-    if (d.ok && !snap_to_unit(d.wi)) d.ok = false;
-    return d;
-  }
+  // Cycles' sample: the refraction from its facets alone, so f·|cos θi|/pdf is f over the
+  // density of what was drawn and pdf is density() (for MIS). sample_exact draws density().
+  BxDFSample sample(const Vec3& wo, Point2 u) const { return sample_lobes(wo, u, false); }
+  BxDFSample sample_exact(const Vec3& wo, Point2 u) const { return sample_lobes(wo, u, true); }
+  bool sample_f_is_exact() const override { return false; }
 
   float density(const Vec3& wo, const Vec3& wi) const {
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
@@ -120,6 +100,45 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
   float closure_sample_weight() const override { return color_.average(); }
 
  private:
+  // One lobe picked by its weight, the refraction with its cover samples or without.
+  BxDFSample sample_lobes(const Vec3& wo, Point2 u, bool cover_refraction) const {
+    BxDFSample s;
+    if (wo.z == 0.0f) return s;
+    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wo, ior_);
+    const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
+    Vec3 wi;
+    bool ok;
+    float cover = 0.0f;
+    if (u.x < p_reflect) {
+      ok = reflection_.sample(c.wo, Point2(u.x / p_reflect, u.y), &wi);
+      s.flags = kReflection | kGlossy;
+    } else {
+      float v = std::min((u.x - p_reflect) / (1.0f - p_reflect), 0x1.fffffep-1f);
+      cover = cover_share(c.wo.z, c.eta);
+      if (cover_refraction && v < cover) {
+        wi = cycles::sample_refraction_cover(Point2(v / cover, u.y));
+        ok = wi.z < 0.0f;
+      } else {
+        if (cover_refraction) v = std::min((v - cover) / (1.0f - cover), 0x1.fffffep-1f);
+        ok = refraction_.sample(c.wo, Point2(v, u.y), c.eta, &wi);
+      }
+      s.flags = kTransmission | kGlossy;
+    }
+    s.wi = c.mirrored ? Vec3(wi.x, wi.y, -wi.z) : wi;
+    // Grazing rough refraction is steep in float: return the bits f() will see.
+    if (!ok || !snap_to_unit(s.wi)) return BxDFSample();
+    s.f = eval(wo, s.wi);
+    s.pdf = density(wo, s.wi);
+    if (!cover_refraction && s.wi.z * wo.z < 0.0f) {
+      // The refraction was drawn from the facets alone: f over the density of that draw.
+      const cycles::CanonicalPair d = cycles::canonical_pair(wo, s.wi, ior_);
+      const float drawn = (1.0f - p_reflect) * refraction_.pdf(d.wo, d.wi, d.eta);
+      if (!(drawn > 0.0f)) return BxDFSample();
+      s.f *= s.pdf / drawn;
+    }
+    return s;
+  }
+
   CyclesDielectricNode node_;
   RGB color_;
   cycles::ReflectionLobe<Distribution> reflection_;

@@ -32,9 +32,11 @@
 //
 // Sampling picks a closure in proportion to Cycles' sample weights (|average(weight)|, times
 // the Fresnel colour at the normal for the Fresnel closures and the sheen's average) and
-// samples it; pdf is the mixture's density, so sample_f, f and pdf agree, except that a
-// multiscatter closure is sampled as Cycles does, with its walk (sample_f_is_exact is then
-// false; sample_exact samples the mixture's density).
+// samples it; pdf is the mixture's density, so sample_f, f and pdf agree, except where Cycles'
+// sampler differs from the exact one (sample_f_is_exact is then false; sample_exact samples
+// the mixture's density): a multiscatter closure is sampled with its walk, and a rough
+// refraction draws no cover samples (cycles_principled_lobes.h), so f·|cos θi|/pdf is
+// Cycles' weight, eval over the density of what was drawn, and pdf stays the mixture's.
 // Not reciprocal when there is transmission: the glass weights depend on F(cos θo).
 #pragma once
 
@@ -93,11 +95,14 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
     else
       fn(*this);
   }
-  // Cycles' sample: a multiscatter closure is sampled with its walk (cycles_multiscatter.h);
-  // sample_exact samples density() for exact importance sampling of f.
+  // Cycles' sample: a multiscatter closure is sampled with its walk (cycles_multiscatter.h),
+  // a rough refraction from its facets alone; sample_exact samples density() for exact
+  // importance sampling of f.
   BxDFSample sample(Vec3 wo, Point2 u) const { return sample_closures(wo, u, true); }
   BxDFSample sample_exact(Vec3 wo, Point2 u) const { return sample_closures(wo, u, false); }
-  bool sample_f_is_exact() const override { return !(s_.specular_multi || s_.glass_multi); }
+  bool sample_f_is_exact() const override {
+    return !(s_.specular_multi || s_.glass_multi || has_rough_refraction());
+  }
   float density(Vec3 wo, Vec3 wi) const;
   // eval and density with the closures built once (BxDF::f_pdf).
   RGB eval_density(Vec3 wo, Vec3 wi, float* density_out) const;
@@ -131,8 +136,12 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
   // `skip`: a closure left out of the sum (the one a walk sampled), or -1.
   RGB eval_upper(const Vec3& wo, const Vec3& wi, const Closures& c, bool back_face,
                  int skip = -1) const;
-  BxDFSample sample_closures(Vec3 wo, Point2 u, bool walk) const;
+  BxDFSample sample_closures(Vec3 wo, Point2 u, bool as_cycles) const;
   // Closure k is a multiscatter closure, which Cycles samples with its walk.
+  // A rough glass refraction closure is built, whose Cycles sample draws no cover samples.
+  bool has_rough_refraction() const {
+    return s_.has_glass && !s_.glass_multi && !s_.glass_refraction_singular;
+  }
   bool walks(int k) const {
     return (k == kSpecularClosure && s_.specular_multi) ||
            (k == kGlassReflectionClosure && s_.glass_multi);
@@ -141,7 +150,12 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
   // Lobe values of closure k without the closure weight.
   RGB lobe_f(int k, const Vec3& wo, const Vec3& wi, float eta, bool back_face) const;
   float lobe_density(int k, const Vec3& wo, const Vec3& wi, float eta, bool back_face) const;
-  bool lobe_sample(int k, const Vec3& wo, Point2 u, float eta, bool back_face, Vec3* wi) const;
+  // `cover`: the rough refraction draws its cover samples too (the exact sampler), or not
+  // (Cycles' sampler).
+  // The refraction lobe's density() less its facet_density(): what its cover adds (wo above).
+  float refraction_cover_excess(const Vec3& wo, const Vec3& wi, float eta) const;
+  bool lobe_sample(int k, const Vec3& wo, Point2 u, float eta, bool back_face, bool cover,
+                   Vec3* wi) const;
   Vec3 to_tangent(const Vec3& w) const;    // into the rotated tangent frame
   Vec3 from_tangent(const Vec3& w) const;
 

@@ -141,7 +141,9 @@ struct GTR1Clearcoat {
 // for α 0.16): a share of the samples, cover_share(), is drawn uniformly below the
 // surface, so that the density covers every pair f does and a sampled estimate converges to
 // ∫ f; the share that keeps its variance least depends on α, η and cos θo
-// (microfacet/refraction_cover.h).
+// (microfacet/refraction_cover.h). That is the exact sampler; Cycles' own draws the facets
+// alone, so the light of the uncovered pairs reaches its images only by light sampling, and
+// the model's Cycles sample (CyclesPrincipled::sample) does the same.
 struct GGXRefraction {
   microfacet::GGX ggx;
   float eta = 1.5f;
@@ -161,25 +163,34 @@ struct GGXRefraction {
     const float g = ggx.G1(wo) * ggx.G1(wi);
     return g * std::fabs(cos_hi * cos_ho) * d * eta * eta / (wo.z * ht2 * -wi.z);
   }
+  // The density of the facet sampler alone (Cycles' own sampler): 0 on the pairs it never draws.
+  float facet_density(const Vec3& wo, const Vec3& wi) const {
+    if (!(wo.z > 0.0f) || !(wi.z < 0.0f)) return 0.0f;
+    Vec3 h = wo + wi * eta;
+    if (!normalize_direction(h)) return 0.0f;
+    if (h.z < 0.0f) h = -h;
+    const float wo_h = dot(wo, h), wi_h = dot(wi, h);
+    if (!(wo_h > 0.0f) || !(wi_h < 0.0f)) return 0.0f;
+    const float denom = wo_h + eta * wi_h;
+    return ggx.pdf_wh(wo, h) * eta * eta * -wi_h / (denom * denom);
+  }
+  // The density of sample() with the cover: the facets' and the cover's, mixed by the share.
   float density(const Vec3& wo, const Vec3& wi) const {
     if (!(wo.z > 0.0f) || !(wi.z < 0.0f)) return 0.0f;
     const float share = cover_share(wo.z);
-    const float cover = share * refraction_cover_pdf(wi);
-    Vec3 h = wo + wi * eta;
-    if (!normalize_direction(h)) return cover;
-    if (h.z < 0.0f) h = -h;
-    const float wo_h = dot(wo, h), wi_h = dot(wi, h);
-    if (!(wo_h > 0.0f) || !(wi_h < 0.0f)) return cover;
-    const float denom = wo_h + eta * wi_h;
-    return (1.0f - share) * ggx.pdf_wh(wo, h) * eta * eta * -wi_h / (denom * denom) + cover;
+    return (1.0f - share) * facet_density(wo, wi) + share * refraction_cover_pdf(wi);
   }
-  bool sample(const Vec3& wo, Point2 u, Vec3* wi) const {
-    const float share = cover_share(wo.z);
-    if (u.x < share) {
-      *wi = sample_refraction_cover(Point2(std::min(u.x / share, 0x1.fffffep-1f), u.y));
-      return wi->z < 0.0f;
+  // With `cover`, a share of the samples is the cover's (density()); without, every sample
+  // comes from the facets, as Cycles draws them (facet_density()).
+  bool sample(const Vec3& wo, Point2 u, Vec3* wi, bool cover = true) const {
+    if (cover) {
+      const float share = cover_share(wo.z);
+      if (u.x < share) {
+        *wi = sample_refraction_cover(Point2(std::min(u.x / share, 0x1.fffffep-1f), u.y));
+        return wi->z < 0.0f;
+      }
+      u.x = std::min((u.x - share) / (1.0f - share), 0x1.fffffep-1f);
     }
-    u.x = std::min((u.x - share) / (1.0f - share), 0x1.fffffep-1f);
     const Vec3 m = ggx.sample_wh(wo, u);
     if (!(dot(wo, m) > 0.0f)) return false;
     if (!refract(wo, m, 1.0f / eta, wi)) return false;
