@@ -95,8 +95,9 @@ def has_rough_refraction(material) -> bool:
         if transmission <= 1e-5:
             return False
         roughness = params.get("roughness", 0.5)
-        if distribution == "multi_ggx" and roughness > 5e-2:
-            return False  # one multiscatter glass closure
+        if distribution == "multi_ggx":
+            # One multiscatter glass closure above 0.05, below it the refraction at roughness.
+            return roughness <= 5e-2 and roughness ** 4 > 1e-7
         refraction = 1.0 - (1.0 - roughness) * (1.0 - params.get("transmission_roughness", 0.0))
         return refraction ** 4 > 1e-7
     return False

@@ -16,8 +16,9 @@
 // transmitted side and the pdf is that mixture. Cycles' sampler draws the facets alone, so its
 // images lose the light that only light sampling finds on those pairs (a finding of the
 // comparison harness), and its indirect light through them: sample_f draws as Cycles does
-// (sample_f_is_exact is false), its weight f·|cos θi| over the density of that draw. The share depends on α, η and cos θo (microfacet/refraction_cover.h): as small as
-// 0.01 where the facets cover nearly all of f, up to 0.9 where they cover little of it.
+// (sample_f_is_exact is false), its weight f·|cos θi| over the density of that draw. The
+// exact sampler's share depends on α, η and cos θo (microfacet/refraction_cover.h): as small
+// as 0.01 where the facets cover nearly all of f, up to 0.9 where they cover little of it.
 // Cycles' singular cases become the delta form (CyclesSharpDielectric): the Sharp distribution,
 // αx·αy <= 1e-7, and a refraction index within 1e-4 of 1 (Cycles then samples a delta
 // pass-through; its eval stays a glossy lobe that its sampler never realises). A delta sample
@@ -108,19 +109,18 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
     Vec3 wi;
     bool ok;
-    float cover = 0.0f;
     if (u.x < p_reflect) {
       ok = reflection_.sample(c.wo, Point2(u.x / p_reflect, u.y), &wi);
       s.flags = kReflection | kGlossy;
     } else {
-      float v = std::min((u.x - p_reflect) / (1.0f - p_reflect), 0x1.fffffep-1f);
-      cover = cover_share(c.wo.z, c.eta);
-      if (cover_refraction && v < cover) {
+      const float v = std::min((u.x - p_reflect) / (1.0f - p_reflect), 0x1.fffffep-1f);
+      const float cover = cover_refraction ? cover_share(c.wo.z, c.eta) : 0.0f;
+      if (v < cover) {
         wi = cycles::sample_refraction_cover(Point2(v / cover, u.y));
         ok = wi.z < 0.0f;
       } else {
-        if (cover_refraction) v = std::min((v - cover) / (1.0f - cover), 0x1.fffffep-1f);
-        ok = refraction_.sample(c.wo, Point2(v, u.y), c.eta, &wi);
+        const float v_facet = std::min((v - cover) / (1.0f - cover), 0x1.fffffep-1f);
+        ok = refraction_.sample(c.wo, Point2(v_facet, u.y), c.eta, &wi);
       }
       s.flags = kTransmission | kGlossy;
     }

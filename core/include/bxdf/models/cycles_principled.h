@@ -137,11 +137,11 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
   RGB eval_upper(const Vec3& wo, const Vec3& wi, const Closures& c, bool back_face,
                  int skip = -1) const;
   BxDFSample sample_closures(Vec3 wo, Point2 u, bool as_cycles) const;
-  // Closure k is a multiscatter closure, which Cycles samples with its walk.
   // A rough glass refraction closure is built, whose Cycles sample draws no cover samples.
   bool has_rough_refraction() const {
     return s_.has_glass && !s_.glass_multi && !s_.glass_refraction_singular;
   }
+  // Closure k is a multiscatter closure, which Cycles samples with its walk.
   bool walks(int k) const {
     return (k == kSpecularClosure && s_.specular_multi) ||
            (k == kGlassReflectionClosure && s_.glass_multi);
@@ -150,10 +150,10 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
   // Lobe values of closure k without the closure weight.
   RGB lobe_f(int k, const Vec3& wo, const Vec3& wi, float eta, bool back_face) const;
   float lobe_density(int k, const Vec3& wo, const Vec3& wi, float eta, bool back_face) const;
-  // `cover`: the rough refraction draws its cover samples too (the exact sampler), or not
-  // (Cycles' sampler).
   // The refraction lobe's density() less its facet_density(): what its cover adds (wo above).
   float refraction_cover_excess(const Vec3& wo, const Vec3& wi, float eta) const;
+  // `cover`: the rough refraction draws its cover samples too (the exact sampler), or not
+  // (Cycles' sampler).
   bool lobe_sample(int k, const Vec3& wo, Point2 u, float eta, bool back_face, bool cover,
                    Vec3* wi) const;
   Vec3 to_tangent(const Vec3& w) const;    // into the rotated tangent frame
