@@ -312,7 +312,9 @@ bool CyclesPrincipled::lobe_sample(int k, const Vec3& wo, Point2 u, float eta, b
 float CyclesPrincipled::refraction_cover_excess(const Vec3& wo, const Vec3& wi, float eta) const {
   cycles::GGXRefraction lobe = s_.glass_refraction;
   lobe.eta = eta;
-  return lobe.density(wo, wi) - lobe.facet_density(wo, wi);
+  float facet;
+  const float density = lobe.density(wo, wi, &facet);
+  return density - facet;
 }
 
 RGB CyclesPrincipled::eval_upper(const Vec3& wo, const Vec3& wi, const Closures& c,

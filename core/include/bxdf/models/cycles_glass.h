@@ -81,12 +81,8 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
   bool sample_f_is_exact() const override { return false; }
 
   float density(const Vec3& wo, const Vec3& wi) const {
-    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
-    const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
-    if (c.wi.z > 0.0f) return p_reflect * reflection_.pdf(c.wo, c.wi);
-    const float cover = cover_share(c.wo.z, c.eta);
-    return (1.0f - p_reflect) * (cover * cycles::refraction_cover_pdf(c.wi) +
-                                 (1.0f - cover) * refraction_.pdf(c.wo, c.wi, c.eta));
+    float facet_refraction;
+    return density_parts(wo, wi, &facet_refraction);
   }
 
   // The share of refraction samples drawn as cover samples (see the file comment), for wo
@@ -128,15 +124,27 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     // Grazing rough refraction is steep in float: return the bits f() will see.
     if (!ok || !snap_to_unit(s.wi)) return BxDFSample();
     s.f = eval(wo, s.wi);
-    s.pdf = density(wo, s.wi);
+    float drawn;
+    s.pdf = density_parts(wo, s.wi, &drawn);
     if (!cover_refraction && s.wi.z * wo.z < 0.0f) {
       // The refraction was drawn from the facets alone: f over the density of that draw.
-      const cycles::CanonicalPair d = cycles::canonical_pair(wo, s.wi, ior_);
-      const float drawn = (1.0f - p_reflect) * refraction_.pdf(d.wo, d.wi, d.eta);
       if (!(drawn > 0.0f)) return BxDFSample();
       s.f *= s.pdf / drawn;
     }
     return s;
+  }
+
+  // density(), and in *facet_refraction the part of it the refraction's facets would give
+  // without the cover, (1 − P(reflect)) × their density (0 for a reflected pair).
+  float density_parts(const Vec3& wo, const Vec3& wi, float* facet_refraction) const {
+    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
+    const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
+    *facet_refraction = 0.0f;
+    if (c.wi.z > 0.0f) return p_reflect * reflection_.pdf(c.wo, c.wi);
+    const float cover = cover_share(c.wo.z, c.eta);
+    const float facet = refraction_.pdf(c.wo, c.wi, c.eta);
+    *facet_refraction = (1.0f - p_reflect) * facet;
+    return (1.0f - p_reflect) * (cover * cycles::refraction_cover_pdf(c.wi) + (1.0f - cover) * facet);
   }
 
   CyclesDielectricNode node_;

@@ -174,11 +174,18 @@ struct GGXRefraction {
     const float denom = wo_h + eta * wi_h;
     return ggx.pdf_wh(wo, h) * eta * eta * -wi_h / (denom * denom);
   }
-  // The density of sample() with the cover: the facets' and the cover's, mixed by the share.
-  float density(const Vec3& wo, const Vec3& wi) const {
+  // The density of sample() with the cover: the facets' and the cover's, mixed by the share;
+  // the facets' own density in *facet.
+  float density(const Vec3& wo, const Vec3& wi, float* facet) const {
+    *facet = 0.0f;
     if (!(wo.z > 0.0f) || !(wi.z < 0.0f)) return 0.0f;
     const float share = cover_share(wo.z);
-    return (1.0f - share) * facet_density(wo, wi) + share * refraction_cover_pdf(wi);
+    *facet = facet_density(wo, wi);
+    return (1.0f - share) * *facet + share * refraction_cover_pdf(wi);
+  }
+  float density(const Vec3& wo, const Vec3& wi) const {
+    float facet;
+    return density(wo, wi, &facet);
   }
   // With `cover`, a share of the samples is the cover's (density()); without, every sample
   // comes from the facets, as Cycles draws them (facet_density()).
