@@ -309,14 +309,6 @@ bool CyclesPrincipled::lobe_sample(int k, const Vec3& wo, Point2 u, float eta, b
   }
 }
 
-float CyclesPrincipled::refraction_cover_excess(const Vec3& wo, const Vec3& wi, float eta) const {
-  cycles::GGXRefraction lobe = s_.glass_refraction;
-  lobe.eta = eta;
-  float facet;
-  const float density = lobe.density(wo, wi, &facet);
-  return density - facet;
-}
-
 RGB CyclesPrincipled::eval_upper(const Vec3& wo, const Vec3& wi, const Closures& c,
                                  bool back_face, int skip) const {
   RGB sum(0.0f);
@@ -329,11 +321,22 @@ RGB CyclesPrincipled::eval_upper(const Vec3& wo, const Vec3& wi, const Closures&
 }
 
 float CyclesPrincipled::density_upper(const Vec3& wo, const Vec3& wi, const Closures& c,
-                                      bool back_face) const {
+                                      bool back_face, float* refraction_excess) const {
+  if (refraction_excess) *refraction_excess = 0.0f;
   if (!(c.sample_total > 0.0f)) return 0.0f;
   float sum = 0.0f;
   for (int k = 0; k < kClosureCount; ++k) {
     if (c.sample_weight[k] == 0.0f || s_.singular(k)) continue;
+    if (k == kGlassRefractionClosure && refraction_excess) {
+      // lobe_density's refraction, with its facets' share kept (one evaluation for both).
+      cycles::GGXRefraction lobe = s_.glass_refraction;
+      lobe.eta = c.eta;
+      float facet;
+      const float density = lobe.density(wo, wi, &facet);
+      *refraction_excess = density - facet;
+      sum += c.sample_weight[k] * density;
+      continue;
+    }
     sum += c.sample_weight[k] * lobe_density(k, wo, wi, c.eta, back_face);
   }
   return sum / c.sample_total;
@@ -451,18 +454,21 @@ BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool as_cycles) 
     if (back) wi.z = -wi.z;
     if (!microfacet::snap_to_unit(wi)) return s;
     if (back) wi.z = -wi.z;
-    s.pdf = density_upper(wo, wi, c, back);
+    // The refraction's cover excess is wanted where Cycles' draw left the cover out.
+    const bool drawn_without_cover = !by_walk && as_cycles && has_rough_refraction() && wi.z < 0.0f;
+    float cover_excess = 0.0f;
+    s.pdf = density_upper(wo, wi, c, back, drawn_without_cover ? &cover_excess : nullptr);
     if (by_walk) {
       if (wi.z == 0.0f) return BxDFSample();
       const float own_pdf = lobe_density(k, wo, wi, c.eta, back);
       s.f = c.weight[k] * w.weight * (own_pdf / std::fabs(wi.z)) + eval_upper(wo, wi, c, back, k);
     } else {
       s.f = back ? eval(Vec3(wo.x, wo.y, -wo.z), Vec3(wi.x, wi.y, -wi.z)) : eval(wo, wi);
-      if (as_cycles && has_rough_refraction() && wi.z < 0.0f) {
+      if (drawn_without_cover) {
         // Drawn without the refraction's cover samples: the weight is f over the density of
         // what was drawn, which lacks the cover's share; pdf stays the mixture's (for MIS).
-        const float drawn = s.pdf - c.sample_weight[kGlassRefractionClosure] / c.sample_total *
-                                        refraction_cover_excess(wo, wi, c.eta);
+        const float drawn =
+            s.pdf - c.sample_weight[kGlassRefractionClosure] / c.sample_total * cover_excess;
         if (!(drawn > 0.0f)) return BxDFSample();
         s.f *= s.pdf / drawn;
       }

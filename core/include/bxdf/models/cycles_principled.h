@@ -146,12 +146,13 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
     return (k == kSpecularClosure && s_.specular_multi) ||
            (k == kGlassReflectionClosure && s_.glass_multi);
   }
-  float density_upper(const Vec3& wo, const Vec3& wi, const Closures& c, bool back_face) const;
+  // The closures' mixture density; with `refraction_excess`, also what the refraction lobe's
+  // cover adds to its own density there (0 without a refraction), from the same evaluation.
+  float density_upper(const Vec3& wo, const Vec3& wi, const Closures& c, bool back_face,
+                      float* refraction_excess = nullptr) const;
   // Lobe values of closure k without the closure weight.
   RGB lobe_f(int k, const Vec3& wo, const Vec3& wi, float eta, bool back_face) const;
   float lobe_density(int k, const Vec3& wo, const Vec3& wi, float eta, bool back_face) const;
-  // The refraction lobe's density() less its facet_density(): what its cover adds (wo above).
-  float refraction_cover_excess(const Vec3& wo, const Vec3& wi, float eta) const;
   // `cover`: the rough refraction draws its cover samples too (the exact sampler), or not
   // (Cycles' sampler).
   bool lobe_sample(int k, const Vec3& wo, Point2 u, float eta, bool back_face, bool cover,
