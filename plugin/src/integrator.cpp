@@ -428,6 +428,9 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
     return next_vertex();
   }
   if (bsdf.num_components() == 0) return end_path();
+  // Cycles picks the first surface's closures defensively (closure_pick.h), for its light
+  // sample's MIS weight as for its BSDF sample.
+  if (bounce == 0 && transparent_bounces == 0) bsdf.use_defensive_sampling();
 
   if (bsdf.has_non_delta()) {
     const RGB nee = sample_one_light(hit, sp, bsdf, wo, receiver, sampler.light(vertex),

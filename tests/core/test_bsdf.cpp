@@ -314,3 +314,86 @@ TEST(BSDF, FCosPdfEqualsFCosAndPdfForEveryModel) {
     }
   }
 }
+
+TEST(BSDF, DefensiveSamplingRaisesEachComponentToAnEighthOfTheSum) {
+  // Cycles' first surface: a Mix (0.95 / 0.05) of a white Diffuse and a white mirror picks the
+  // mirror with 0.125 / (0.95 + 0.125), not 0.05; its sample then weighs 0.05 / that chance,
+  // the mixture pdf uses the raised weights, and f is unchanged.
+  const Lambertian diffuse(RGB(1.0f));
+  const TestMirror mirror(RGB(1.0f));
+  const Frame fr = tilted_frame();
+  BSDF plain(fr, fr.n), defensive(fr, fr.n);
+  for (BSDF* b : {&plain, &defensive}) {
+    b->add(&diffuse, RGB(0.95f));
+    b->add(&mirror, RGB(0.05f));
+  }
+  defensive.use_defensive_sampling();
+  const float mirror_chance = 0.125f / (0.95f + 0.125f);
+  const Vec3 wo = normalize(fr.n + fr.s * 0.3f), wi = normalize(fr.n + fr.t * 0.4f);
+  EXPECT_NEAR(defensive.pdf(wo, wi), (1.0f - mirror_chance) * dot(wi, fr.n) * kInvPi, 1e-6f);
+  EXPECT_NEAR(plain.pdf(wo, wi), 0.95f * dot(wi, fr.n) * kInvPi, 1e-6f);
+  expect_rgb_near(defensive.f(wo, wi), plain.f(wo, wi), 0.0f);
+  EXPECT_FALSE(defensive.sample_f(wo, Point2(1.0f - mirror_chance - 0.01f, 0.3f)).is_delta());
+  const BSDFSample m = defensive.sample_f(wo, Point2(1.0f - mirror_chance + 0.01f, 0.3f));
+  ASSERT_TRUE(m.valid() && m.is_delta());
+  EXPECT_NEAR(m.pdf, mirror_chance, 1e-6f);
+  expect_rgb_near(m.f * (abs_dot(m.wi, fr.n) / m.pdf), RGB(0.05f / mirror_chance), 1e-5f);
+  // Both estimate the same albedo: 0.95 + 0.05.
+  PCG32 rng(11);
+  constexpr int kN = 100000;
+  double sum_plain = 0.0, sum_defensive = 0.0;
+  int mirrors = 0;
+  for (int i = 0; i < kN; ++i) {
+    const Point2 u(rng.uniform(), rng.uniform());
+    const BSDFSample a = plain.sample_f(wo, u), b = defensive.sample_f(wo, u);
+    if (a.valid()) sum_plain += a.f_cos.r / a.pdf;
+    if (b.valid()) sum_defensive += b.f_cos.r / b.pdf;
+    mirrors += b.valid() && b.is_delta();
+  }
+  EXPECT_NEAR(sum_plain / kN, 1.0, 2e-3);
+  EXPECT_NEAR(sum_defensive / kN, 1.0, 2e-3);
+  EXPECT_NEAR(double(mirrors) / kN, mirror_chance, 5.0 * std::sqrt(mirror_chance / kN));
+}
+
+TEST(BSDF, DefensiveSamplingOfOneComponentPicksItsOwnClosuresSo) {
+  // A Glass node, or a Principled BSDF of full transmission, alone is one component of two
+  // Cycles closures: at the first surface its Fresnel reflection (F = 0.04 head-on, against
+  // 0.96) is picked with 0.125 / (0.125 + 0.96), as Cycles' defensive sampling picks it, and
+  // each pick weighs F over that chance.
+  ParamSet glass_params, principled_params;
+  glass_params.set("ior", 1.5);
+  glass_params.set("distribution", std::string("sharp"));
+  principled_params.set("transmission", 1.0);
+  principled_params.set("roughness", 0.0);
+  principled_params.set("ior", 1.5);
+  principled_params.set("base_color", RGBValue{1.0, 1.0, 1.0});
+  for (const BxDFPtr& glass : {make("cycles_glass", glass_params),
+                               make("cycles_principled", principled_params)}) {
+    SCOPED_TRACE(glass->model_name());
+    const Frame fr = tilted_frame();
+    BSDF plain(fr, fr.n), defensive(fr, fr.n);
+    plain.add(glass.get());
+    defensive.add(glass.get());
+    defensive.use_defensive_sampling();
+    const Vec3 wo = fr.n;  // head-on: F = 0.04
+    const float f0 = 0.04f, floor = 0.125f;  // the closures' weights F and 1 - F sum to 1
+    const float reflect_chance = floor / (floor + (1.0f - f0));
+    PCG32 rng(5);
+    constexpr int kN = 20000;
+    int reflections = 0, plain_reflections = 0;
+    for (int i = 0; i < kN; ++i) {
+      const Point2 u(rng.uniform(), rng.uniform());
+      const BSDFSample s = defensive.sample_f(wo, u);
+      ASSERT_TRUE(s.valid());
+      const bool reflected = dot(s.wi, fr.n) > 0.0f;
+      reflections += reflected;
+      const float weight = s.f_cos.r / s.pdf;
+      EXPECT_NEAR(weight, reflected ? f0 / reflect_chance : (1.0f - f0) / (1.0f - reflect_chance),
+                  2e-4f);
+      const BSDFSample p = plain.sample_f(wo, u);
+      plain_reflections += p.valid() && dot(p.wi, fr.n) > 0.0f;
+    }
+    EXPECT_NEAR(double(reflections) / kN, reflect_chance, 5.0 * std::sqrt(reflect_chance / kN));
+    EXPECT_NEAR(double(plain_reflections) / kN, f0, 5.0 * std::sqrt(f0 / kN));
+  }
+}

@@ -131,6 +131,95 @@ TEST_P(ModelSampling, SampleReturnsPdfAndF) {
   }
 }
 
+// The defensive pick of a path's first surface (closure_pick.h): sample_f_defensive's pdf is
+// pdf_defensive() of its direction, and where the model's sample_f is exact its f is f(); a
+// model of one closure samples as sample_f does. For the Principled and Glass, whose closures
+// it raises, the χ² test below checks the directions.
+TEST_P(ModelSampling, DefensiveSampleReturnsItsPdf) {
+  const std::string& model = GetParam();
+  constexpr int kSamples = 5000;
+  for (const GridEntry& e : grid_for(model)) {
+    const BxDFPtr m = make_entry(model, e);
+    if (m->is_delta()) continue;
+    for (size_t d = 0; d < incident_directions().size(); ++d) {
+      const Vec3 wo = incident_directions()[d].wo;
+      PCG32 rng(run_seed(model, e.label, d) + 13);
+      int bad = 0;
+      std::string first;
+      for (int s = 0; s < kSamples; ++s) {
+        const Point2 u(rng.uniform(), rng.uniform());
+        const BxDFSample smp = m->sample_f_defensive(wo, u);
+        if (!smp.valid()) continue;
+        float pdf = 0.0f;
+        const RGB f = m->f_pdf_defensive(wo, smp.wi, &pdf);
+        const bool pdf_ok = close(smp.pdf, pdf, 1e-3f, 1e-6f) &&
+                            close(pdf, m->pdf_defensive(wo, smp.wi), 1e-6f, 0.0f);
+        const bool f_ok = !m->sample_f_is_exact() ||
+                          (close(smp.f.r, f.r, 1e-3f, 1e-6f) && close(smp.f.g, f.g, 1e-3f, 1e-6f) &&
+                           close(smp.f.b, f.b, 1e-3f, 1e-6f));
+        if (!(pdf_ok && f_ok) && first.empty())
+          first = "wi " + fmt_vec(smp.wi) + ": sample pdf " + std::to_string(smp.pdf) +
+                  " vs pdf_defensive() " + std::to_string(pdf);
+        bad += !(pdf_ok && f_ok);
+      }
+      EXPECT_EQ(bad, 0) << describe(model, e) << " wo " << incident_directions()[d].label << ": "
+                        << bad << " mismatches in " << kSamples << " samples; first: " << first;
+    }
+  }
+}
+
+// sample_f_defensive against pdf_defensive by χ², for the models that pick among closures and
+// sample exactly (a Principled without walks or rough refraction; Glass is sampled from its
+// facets alone, which its exact sampler covers): the defensive pick draws what its pdf says.
+TEST(DefensiveSampling, Chi2OfThePrincipledsDefensivePick) {
+  ParamSet layered;
+  layered.set("base_color", RGBValue{0.6, 0.05, 0.04});
+  layered.set("roughness", 0.45);
+  layered.set("clearcoat", 1.0);
+  layered.set("clearcoat_roughness", 0.2);
+  layered.set("sheen", 0.5);
+  const BxDFPtr plastic = make("cycles_principled", layered);
+  ASSERT_TRUE(plastic->sample_f_is_exact());
+  // A view of the model whose sample_f and pdf are the defensive ones.
+  class DefensiveView final : public BxDF {
+   public:
+    explicit DefensiveView(const BxDF& m) : BxDF(m.flags()), m_(m) {}
+    RGB f(const Vec3& wo, const Vec3& wi) const override { return m_.f(wo, wi); }
+    BxDFSample sample_f(const Vec3& wo, Point2 u) const override {
+      return m_.sample_f_defensive(wo, u);
+    }
+    float pdf(const Vec3& wo, const Vec3& wi) const override { return m_.pdf_defensive(wo, wi); }
+    void f_batch(size_t n, DirectionsIn wo, DirectionsIn wi, RGBOut out) const override {
+      m_.f_batch(n, wo, wi, out);
+    }
+    void sample_f_batch(size_t n, DirectionsIn wo, const float* u1, const float* u2,
+                        DirectionsOut wi, RGBOut f, float* pdf) const override {
+      for (size_t k = 0; k < n; ++k) {
+        const BxDFSample s = sample_f(Vec3(wo.x[k], wo.y[k], wo.z[k]), Point2(u1[k], u2[k]));
+        wi.x[k] = s.wi.x, wi.y[k] = s.wi.y, wi.z[k] = s.wi.z;
+        f.r[k] = s.f.r, f.g[k] = s.f.g, f.b[k] = s.f.b;
+        pdf[k] = s.pdf;
+      }
+    }
+    void pdf_batch(size_t n, DirectionsIn wo, DirectionsIn wi, float* out) const override {
+      for (size_t k = 0; k < n; ++k)
+        out[k] = pdf(Vec3(wo.x[k], wo.y[k], wo.z[k]), Vec3(wi.x[k], wi.y[k], wi.z[k]));
+    }
+
+   private:
+    const BxDF& m_;
+  } view(*plastic);
+  for (size_t d = 0; d < incident_directions().size(); ++d) {
+    Chi2Config config;
+    config.seed = 0xdef + d;
+    const Chi2Result r = run_chi2(view, incident_directions()[d].wo, config);
+    EXPECT_TRUE(r.hard_failure.empty()) << incident_directions()[d].label << ": " << r.hard_failure;
+    EXPECT_GE(r.p_value, kAlpha / double(incident_directions().size()))
+        << incident_directions()[d].label << ": chi2 " << r.statistic << " dof " << r.dof
+        << "; worst cells:" << r.worst_cells;
+  }
+}
+
 // A model whose sample_f runs Cycles' sampling walk (multiscatter GGX): its pdf is still
 // pdf() of the direction (what MIS needs), its weight f·|cos θi|/pdf finite and non-negative,
 // and its f differs from f() (the walk is not the eval; if they agreed, the flag would be

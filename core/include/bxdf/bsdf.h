@@ -4,7 +4,9 @@
 // decide whether a pair of directions is a reflection or a transmission (so that shading
 // normals cannot leak light through a surface), and picks one component to sample in
 // proportion to its sample weight, the average of its RGB weight times the colour Cycles folds
-// into a closure's weight (BxDF::closure_sample_weight): Cycles' sample_weight.
+// into a closure's weight (BxDF::closure_sample_weight): Cycles' sample_weight. At a path's
+// first surface Cycles raises each closure's sample weight to at least an eighth of their sum
+// before picking (closure_pick.h): use_defensive_sampling().
 //
 // A BSDF is built per hit, on the stack: it holds non-owning pointers to BxDFs that the scene
 // owns (as shared BxDFPtrs) and never allocates.
@@ -66,6 +68,14 @@ class BSDF {
   // they sample their whole lobe, part of which may be lost below the plane.
   void set_sampling_horizon(const Vec3& true_geometric_normal);
 
+  // Cycles' defensive sampling (closure_pick.h), for the BSDF of a path's first surface, once
+  // every component is added: each component's sample weight is raised to at least an eighth
+  // of their sum; a BSDF of one component (a Principled BSDF, a Glass) has its closures inside
+  // picked so instead (BxDF::sample_f_defensive). Sampling and pdfs use the raised weights.
+  // Inside a mixture of several components a component's own closures are picked by their
+  // weights (Cycles raises every closure of the material against the whole sum).
+  void use_defensive_sampling();
+
   const Frame& frame() const { return frame_; }
   const Vec3& geometric_normal() const { return ng_; }
   Vec3 to_local(const Vec3& v) const { return frame_.to_local(v); }
@@ -95,6 +105,11 @@ class BSDF {
   Vec3 ng_{0, 0, 1};
   Vec3 horizon_{0, 0, 1};  // set_sampling_horizon's normal, read where has_horizon_
   bool has_horizon_ = false;
+  // use_defensive_sampling() on a BSDF of one component: its closures are picked defensively.
+  bool component_picks_defensively_ = false;
+  BxDFSample component_sample(const BxDF& b, const Vec3& wo, Point2 u) const {
+    return component_picks_defensively_ ? b.sample_f_defensive(wo, u) : b.sample_f(wo, u);
+  }
   // Component i's local horizon normal when its cosine lobe is clipped at wo (local), else
   // false: no horizon, another kind of model, wo below its frame, or the plane below it.
   bool clipped_lobe(int i, const Vec3& wo, Vec3* g) const {

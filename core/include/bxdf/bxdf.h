@@ -13,6 +13,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "bxdf/closure_pick.h"
 #include "bxdf/frame.h"
 #include "bxdf/params.h"
 #include "bxdf/spectrum.h"
@@ -77,6 +78,16 @@ class BxDF {
   virtual RGB f_pdf(const Vec3& wo, const Vec3& wi, float* pdf_out) const {
     *pdf_out = pdf(wo, wi);
     return f(wo, wi);
+  }
+
+  // sample_f, pdf and f_pdf with the model's own closures picked by ClosurePick::kDefensive
+  // (closure_pick.h): what Cycles does at a path's first surface. A model made of several of
+  // Cycles' closures (the Principled BSDF, the Glass node) overrides them; for a model of one
+  // closure they are sample_f, pdf and f_pdf.
+  virtual BxDFSample sample_f_defensive(const Vec3& wo, Point2 u) const { return sample_f(wo, u); }
+  virtual float pdf_defensive(const Vec3& wo, const Vec3& wi) const { return pdf(wo, wi); }
+  virtual RGB f_pdf_defensive(const Vec3& wo, const Vec3& wi, float* pdf_out) const {
+    return f_pdf(wo, wi, pdf_out);
   }
 
   // False for a model that samples as a Cycles closure does with its random walk (multiscatter
@@ -170,6 +181,17 @@ struct has_sample_exact<
     T, std::void_t<decltype(std::declval<const T&>().sample_exact(Vec3(), Point2()))>>
     : std::true_type {};
 
+// A model made of several of Cycles' closures picks one by a ClosurePick:
+//   BxDFSample sample(const Vec3& wo, Point2 u, ClosurePick pick) const;
+//   float density(const Vec3& wo, const Vec3& wi, ClosurePick pick) const;
+// (sample(wo, u) and density(wo, wi) being the kByWeight ones), and the *_defensive calls use
+// them with kDefensive.
+template <class T, class = void>
+struct has_closure_pick : std::false_type {};
+template <class T>
+struct has_closure_pick<T, std::void_t<decltype(std::declval<const T&>().density(
+                               Vec3(), Vec3(), ClosurePick::kDefensive))>> : std::true_type {};
+
 // A model whose eval and density share work gives both at once: eval_density(wo, wi, &pdf).
 template <class T, class = void>
 struct has_eval_density : std::false_type {};
@@ -201,6 +223,44 @@ class BxDFImpl : public BxDF {
     } else {
       *pdf_out = sanitize_nonnegative(derived().density(wo, wi));
       return sanitize_nonnegative(derived().eval(wo, wi));
+    }
+  }
+  BxDFSample sample_f_defensive(const Vec3& wo_in, Point2 u) const final {
+    if constexpr (has_closure_pick<Derived>::value) {
+      Vec3 wo = wo_in;
+      if (!normalize_direction(wo)) return BxDFSample();
+      return guard_sample(derived().sample(wo, clamp_u(u), ClosurePick::kDefensive));
+    } else {
+      return sample_one(wo_in, u);
+    }
+  }
+  float pdf_defensive(const Vec3& wo_in, const Vec3& wi_in) const final {
+    if constexpr (has_closure_pick<Derived>::value) {
+      Vec3 wo = wo_in, wi = wi_in;
+      if (!normalize_direction(wo) || !normalize_direction(wi)) return 0.0f;
+      return sanitize_nonnegative(derived().density(wo, wi, ClosurePick::kDefensive));
+    } else {
+      return pdf_one(wo_in, wi_in);
+    }
+  }
+  RGB f_pdf_defensive(const Vec3& wo_in, const Vec3& wi_in, float* pdf_out) const final {
+    if constexpr (has_closure_pick<Derived>::value) {
+      Vec3 wo = wo_in, wi = wi_in;
+      if (!normalize_direction(wo) || !normalize_direction(wi)) {
+        *pdf_out = 0.0f;
+        return RGB(0.0f);
+      }
+      if constexpr (has_eval_density<Derived>::value) {
+        float density = 0.0f;
+        const RGB f = derived().eval_density(wo, wi, &density, ClosurePick::kDefensive);
+        *pdf_out = sanitize_nonnegative(density);
+        return sanitize_nonnegative(f);
+      } else {
+        *pdf_out = sanitize_nonnegative(derived().density(wo, wi, ClosurePick::kDefensive));
+        return sanitize_nonnegative(derived().eval(wo, wi));
+      }
+    } else {
+      return f_pdf(wo_in, wi_in, pdf_out);
     }
   }
   BxDFSample sample_f_exact(const Vec3& wo_in, Point2 u) const final {

@@ -187,7 +187,8 @@ Vec3 CyclesPrincipled::from_tangent(const Vec3& w) const {
   return {s_.rot_cos * w.x - s_.rot_sin * w.y, s_.rot_sin * w.x + s_.rot_cos * w.y, w.z};
 }
 
-CyclesPrincipled::Closures CyclesPrincipled::closures(const Vec3& wo, bool back_face) const {
+CyclesPrincipled::Closures CyclesPrincipled::closures(const Vec3& wo, bool back_face,
+                                                     ClosurePick pick) const {
   Closures c;
   c.eta = back_face ? 1.0f / s_.ior : s_.ior;
   const auto add = [&](int k, const RGB& weight, float sample_factor) {
@@ -223,6 +224,8 @@ CyclesPrincipled::Closures CyclesPrincipled::closures(const Vec3& wo, bool back_
   }
   if (s_.has_clearcoat)
     add(kClearcoatClosure, RGB(s_.clearcoat), s_.clearcoat_lobe.fresnel_at_normal(wo));
+  if (pick == ClosurePick::kDefensive)
+    c.sample_total = raise_to_defensive_floor(c.sample_weight, kClosureCount);
   return c;
 }
 
@@ -368,17 +371,18 @@ RGB CyclesPrincipled::eval_general(Vec3 wo, Vec3 wi) const {
   return eval_upper(wo, wi, closures(wo, back), back);
 }
 
-float CyclesPrincipled::density(Vec3 wo, Vec3 wi) const {
+float CyclesPrincipled::density(Vec3 wo, Vec3 wi, ClosurePick pick) const {
   if (wo.z == 0.0f) return 0.0f;
   const bool back = wo.z < 0.0f;
   if (back) {
     wo.z = -wo.z;
     wi.z = -wi.z;
   }
-  return density_upper(wo, wi, closures(wo, back), back);
+  return density_upper(wo, wi, closures(wo, back, pick), back);
 }
 
-RGB CyclesPrincipled::eval_density(Vec3 wo, Vec3 wi, float* density_out) const {
+RGB CyclesPrincipled::eval_density(Vec3 wo, Vec3 wi, float* density_out,
+                                   ClosurePick pick) const {
   // Term for term what eval() and density() compute; the single-scatter kernel takes the
   // directions as given (it turns them to the upper side itself).
   const RGB kernel_f = s_.single_scatter ? s_.kernel.eval_one(wo, wi) : RGB(0.0f);
@@ -391,17 +395,18 @@ RGB CyclesPrincipled::eval_density(Vec3 wo, Vec3 wi, float* density_out) const {
     wo.z = -wo.z;
     wi.z = -wi.z;
   }
-  const Closures c = closures(wo, back);
+  const Closures c = closures(wo, back, pick);
   *density_out = density_upper(wo, wi, c, back);
   return s_.single_scatter ? kernel_f : eval_upper(wo, wi, c, back);
 }
 
-BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool as_cycles) const {
+BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool as_cycles,
+                                             ClosurePick pick) const {
   BxDFSample s;
   if (wo.z == 0.0f) return s;
   const bool back = wo.z < 0.0f;
   if (back) wo.z = -wo.z;
-  const Closures c = closures(wo, back);
+  const Closures c = closures(wo, back, pick);
   if (!(c.sample_total > 0.0f)) return s;
 
   // Pick a closure in proportion to its sample weight and stretch u.x back to [0, 1).
@@ -414,7 +419,7 @@ BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool as_cycles) 
     if (target < start + c.sample_weight[i]) break;
     start += c.sample_weight[i];
   }
-  const float pick = c.sample_weight[k] / c.sample_total;
+  const float chance = c.sample_weight[k] / c.sample_total;
   const Point2 v(std::min((target - start) / c.sample_weight[k], kOneBelowOne), u.y);
 
   Vec3 wi;
@@ -433,7 +438,7 @@ BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool as_cycles) 
       if (k == kClearcoatClosure) weight *= s_.clearcoat_lobe.fresnel_at_normal(wo);
       s.flags = kReflection | kSpecular;
     }
-    s.f = weight / (pick * std::fabs(wi.z));
+    s.f = weight / (chance * std::fabs(wi.z));
     s.pdf = 1.0f;
   } else {
     // A multiscatter closure is sampled as Cycles does, with its walk: its eval is weight ×

@@ -44,6 +44,13 @@ enum class CyclesDielectricNode { kGlass, kRefraction };
 // The closure weights (without the colour) for a wo above the surface with relative index eta.
 struct CyclesDielectricWeights {
   float reflection, refraction;
+  // The closures' sample weights as `pick` makes them (closure_pick.h).
+  CyclesDielectricWeights sampling(ClosurePick pick) const {
+    if (pick == ClosurePick::kByWeight) return *this;
+    float w[2] = {reflection, refraction};
+    raise_to_defensive_floor(w, 2);
+    return {w[0], w[1]};
+  }
   float reflection_probability() const { return reflection / (reflection + refraction); }
 };
 inline CyclesDielectricWeights cycles_dielectric_weights(CyclesDielectricNode node, float cos_o,
@@ -76,13 +83,17 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
 
   // Cycles' sample: the refraction from its facets alone, so f·|cos θi|/pdf is f over the
   // density of what was drawn and pdf is density() (for MIS). sample_exact draws density().
-  BxDFSample sample(const Vec3& wo, Point2 u) const { return sample_lobes(wo, u, false); }
-  BxDFSample sample_exact(const Vec3& wo, Point2 u) const { return sample_lobes(wo, u, true); }
+  BxDFSample sample(const Vec3& wo, Point2 u, ClosurePick pick = ClosurePick::kByWeight) const {
+    return sample_lobes(wo, u, false, pick);
+  }
+  BxDFSample sample_exact(const Vec3& wo, Point2 u) const {
+    return sample_lobes(wo, u, true, ClosurePick::kByWeight);
+  }
   bool sample_f_is_exact() const override { return false; }
 
-  float density(const Vec3& wo, const Vec3& wi) const {
+  float density(const Vec3& wo, const Vec3& wi, ClosurePick pick = ClosurePick::kByWeight) const {
     float facet_refraction;
-    return density_parts(wo, wi, &facet_refraction);
+    return density_parts(wo, wi, pick, &facet_refraction);
   }
 
   // The share of refraction samples drawn as cover samples (see the file comment), for wo
@@ -97,12 +108,15 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
   float closure_sample_weight() const override { return color_.average(); }
 
  private:
-  // One lobe picked by its weight, the refraction with its cover samples or without.
-  BxDFSample sample_lobes(const Vec3& wo, Point2 u, bool cover_refraction) const {
+  // One lobe picked by its sample weight as `pick` makes it, the refraction with its cover
+  // samples or without.
+  BxDFSample sample_lobes(const Vec3& wo, Point2 u, bool cover_refraction,
+                          ClosurePick pick) const {
     BxDFSample s;
     if (wo.z == 0.0f) return s;
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wo, ior_);
-    const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
+    const float p_reflect =
+        cycles_dielectric_weights(node_, c.wo.z, c.eta).sampling(pick).reflection_probability();
     Vec3 wi;
     bool ok;
     if (u.x < p_reflect) {
@@ -125,7 +139,7 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     if (!ok || !snap_to_unit(s.wi)) return BxDFSample();
     s.f = eval(wo, s.wi);
     float drawn;
-    s.pdf = density_parts(wo, s.wi, &drawn);
+    s.pdf = density_parts(wo, s.wi, pick, &drawn);
     if (!cover_refraction && s.wi.z * wo.z < 0.0f) {
       // The refraction was drawn from the facets alone: f over the density of that draw.
       if (!(drawn > 0.0f)) return BxDFSample();
@@ -136,9 +150,11 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
 
   // density(), and in *facet_refraction the part of it the refraction's facets would give
   // without the cover, (1 − P(reflect)) × their density (0 for a reflected pair).
-  float density_parts(const Vec3& wo, const Vec3& wi, float* facet_refraction) const {
+  float density_parts(const Vec3& wo, const Vec3& wi, ClosurePick pick,
+                      float* facet_refraction) const {
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
-    const float p_reflect = cycles_dielectric_weights(node_, c.wo.z, c.eta).reflection_probability();
+    const float p_reflect =
+        cycles_dielectric_weights(node_, c.wo.z, c.eta).sampling(pick).reflection_probability();
     *facet_refraction = 0.0f;
     if (c.wi.z > 0.0f) return p_reflect * reflection_.pdf(c.wo, c.wi);
     const float cover = cover_share(c.wo.z, c.eta);
@@ -164,16 +180,22 @@ class CyclesSharpDielectric final : public BxDFImpl<CyclesSharpDielectric> {
         ior_(ior) {}
 
   RGB eval(const Vec3&, const Vec3&) const { return RGB(0.0f); }
-  BxDFSample sample(const Vec3& wo, Point2 u) const {
+  BxDFSample sample(const Vec3& wo, Point2 u, ClosurePick pick = ClosurePick::kByWeight) const {
     BxDFSample s;
     if (std::fabs(wo.z) < kMinSpecularCos) return s;
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wo, ior_);
     const CyclesDielectricWeights w = cycles_dielectric_weights(node_, c.wo.z, c.eta);
+    const CyclesDielectricWeights sw = w.sampling(pick);
+    // The picked closure's weight over the chance of picking it, as (sum of the sample
+    // weights) x (weight / sample weight): the sum itself where the pick raised nothing.
+    float weight_over_chance;
     Vec3 wi;
-    if (u.x < w.reflection_probability()) {
+    if (u.x < sw.reflection_probability()) {
       wi = specular_reflect(c.wo);
       s.flags = kReflection | kSpecular;
+      weight_over_chance = (sw.reflection + sw.refraction) * (w.reflection / sw.reflection);
     } else {
+      weight_over_chance = (sw.reflection + sw.refraction) * (w.refraction / sw.refraction);
       // Cycles' refraction closure samples nothing under total internal reflection.
       if (!refract(c.wo, Vec3(0.0f, 0.0f, 1.0f), 1.0f / c.eta, &wi) ||
           !(wi.z < -kMinSpecularCos))
@@ -182,10 +204,12 @@ class CyclesSharpDielectric final : public BxDFImpl<CyclesSharpDielectric> {
     }
     s.wi = c.mirrored ? Vec3(wi.x, wi.y, -wi.z) : wi;
     s.pdf = 1.0f;
-    s.f = color_ * ((w.reflection + w.refraction) / std::fabs(wi.z));
+    s.f = color_ * (weight_over_chance / std::fabs(wi.z));
     return s;
   }
-  float density(const Vec3&, const Vec3&) const { return 0.0f; }
+  float density(const Vec3&, const Vec3&, ClosurePick = ClosurePick::kByWeight) const {
+    return 0.0f;
+  }
 
   float closure_sample_weight() const override { return color_.average(); }
 

@@ -98,14 +98,19 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
   // Cycles' sample: a multiscatter closure is sampled with its walk (cycles_multiscatter.h),
   // a rough refraction from its facets alone; sample_exact samples density() for exact
   // importance sampling of f.
-  BxDFSample sample(Vec3 wo, Point2 u) const { return sample_closures(wo, u, true); }
-  BxDFSample sample_exact(Vec3 wo, Point2 u) const { return sample_closures(wo, u, false); }
+  BxDFSample sample(Vec3 wo, Point2 u, ClosurePick pick = ClosurePick::kByWeight) const {
+    return sample_closures(wo, u, true, pick);
+  }
+  BxDFSample sample_exact(Vec3 wo, Point2 u) const {
+    return sample_closures(wo, u, false, ClosurePick::kByWeight);
+  }
   bool sample_f_is_exact() const override {
     return !(s_.specular_multi || s_.glass_multi || has_rough_refraction());
   }
-  float density(Vec3 wo, Vec3 wi) const;
+  float density(Vec3 wo, Vec3 wi, ClosurePick pick = ClosurePick::kByWeight) const;
   // eval and density with the closures built once (BxDF::f_pdf).
-  RGB eval_density(Vec3 wo, Vec3 wi, float* density_out) const;
+  RGB eval_density(Vec3 wo, Vec3 wi, float* density_out,
+                   ClosurePick pick = ClosurePick::kByWeight) const;
 
   // The diffuse and sheen lobes (Cycles' PRINCIPLED_DIFFUSE and PRINCIPLED_SHEEN closures).
   bool has_diffuse_closure_lobes() const override { return s_.has_diffuse || s_.has_sheen; }
@@ -121,14 +126,15 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
     kClosureCount
   };
   // The closures built for this wo (in the upper hemisphere): weight and sample weight each,
-  // zero for the ones not built.
+  // zero for the ones not built; the sample weights as `pick` makes them.
   struct Closures {
     RGB weight[kClosureCount];
     float sample_weight[kClosureCount] = {};
     float sample_total = 0.0f;
     float eta = 1.0f;  // the glass's index ratio on this side
   };
-  Closures closures(const Vec3& wo_upper, bool back_face) const;
+  Closures closures(const Vec3& wo_upper, bool back_face,
+                    ClosurePick pick = ClosurePick::kByWeight) const;
 
  private:
   RGB eval_general(Vec3 wo, Vec3 wi) const;  // any distribution, closure by closure
@@ -136,7 +142,7 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
   // `skip`: a closure left out of the sum (the one a walk sampled), or -1.
   RGB eval_upper(const Vec3& wo, const Vec3& wi, const Closures& c, bool back_face,
                  int skip = -1) const;
-  BxDFSample sample_closures(Vec3 wo, Point2 u, bool as_cycles) const;
+  BxDFSample sample_closures(Vec3 wo, Point2 u, bool as_cycles, ClosurePick pick) const;
   // A rough glass refraction closure is built, whose Cycles sample draws no cover samples.
   bool has_rough_refraction() const {
     return s_.has_glass && !s_.glass_multi && !s_.glass_refraction_singular;
