@@ -68,6 +68,8 @@ void BSDF::set_sampling_horizon(const Vec3& true_geometric_normal) {
 }
 
 void BSDF::use_defensive_sampling() {
+  if (defensive_) return;  // the raised weights are not raised again
+  defensive_ = true;
   if (count_ == 1) {
     component_picks_defensively_ = true;
     return;

@@ -328,6 +328,7 @@ TEST(BSDF, DefensiveSamplingRaisesEachComponentToAnEighthOfTheSum) {
     b->add(&mirror, RGB(0.05f));
   }
   defensive.use_defensive_sampling();
+  defensive.use_defensive_sampling();  // once raised, the weights stay as they are
   const float mirror_chance = 0.125f / (0.95f + 0.125f);
   const Vec3 wo = normalize(fr.n + fr.s * 0.3f), wi = normalize(fr.n + fr.t * 0.4f);
   EXPECT_NEAR(defensive.pdf(wo, wi), (1.0f - mirror_chance) * dot(wi, fr.n) * kInvPi, 1e-6f);

@@ -105,6 +105,7 @@ class BSDF {
   Vec3 ng_{0, 0, 1};
   Vec3 horizon_{0, 0, 1};  // set_sampling_horizon's normal, read where has_horizon_
   bool has_horizon_ = false;
+  bool defensive_ = false;  // use_defensive_sampling() was called
   // use_defensive_sampling() on a BSDF of one component: its closures are picked defensively.
   bool component_picks_defensively_ = false;
   BxDFSample component_sample(const BxDF& b, const Vec3& wo, Point2 u) const {

@@ -244,9 +244,7 @@ RGB CyclesPrincipled::lobe_f(int k, const Vec3& wo, const Vec3& wi, float eta,
       return lobe.f(wo, wi);
     }
     case kGlassRefractionClosure: {
-      cycles::GGXRefraction lobe = s_.glass_refraction;
-      lobe.eta = eta;
-      return RGB(lobe.f(wo, wi));
+      return RGB(refraction_lobe(eta).f(wo, wi));
     }
     case kClearcoatClosure: return RGB(s_.clearcoat_lobe.f(wo, wi));
     default: return RGB(0.0f);
@@ -266,9 +264,7 @@ float CyclesPrincipled::lobe_density(int k, const Vec3& wo, const Vec3& wi, floa
       return s_.glass_reflection.density(wo, wi);  // the reflection density does not use η
     }
     case kGlassRefractionClosure: {
-      cycles::GGXRefraction lobe = s_.glass_refraction;
-      lobe.eta = eta;
-      return lobe.density(wo, wi);
+      return refraction_lobe(eta).density(wo, wi);
     }
     case kClearcoatClosure: return s_.clearcoat_lobe.density(wo, wi);
     default: return 0.0f;
@@ -303,9 +299,7 @@ bool CyclesPrincipled::lobe_sample(int k, const Vec3& wo, Point2 u, float eta, b
       return s_.glass_reflection.sample(wo, u, wi);
     }
     case kGlassRefractionClosure: {
-      cycles::GGXRefraction lobe = s_.glass_refraction;
-      lobe.eta = eta;
-      return lobe.sample(wo, u, wi, cover);
+      return refraction_lobe(eta).sample(wo, u, wi, cover);
     }
     case kClearcoatClosure: return s_.clearcoat_lobe.sample(wo, u, wi);
     default: return false;
@@ -332,10 +326,8 @@ float CyclesPrincipled::density_upper(const Vec3& wo, const Vec3& wi, const Clos
     if (c.sample_weight[k] == 0.0f || s_.singular(k)) continue;
     if (k == kGlassRefractionClosure && refraction_excess) {
       // lobe_density's refraction, with its facets' share kept (one evaluation for both).
-      cycles::GGXRefraction lobe = s_.glass_refraction;
-      lobe.eta = c.eta;
       float facet;
-      const float density = lobe.density(wo, wi, &facet);
+      const float density = refraction_lobe(c.eta).density(wo, wi, &facet);
       *refraction_excess = density - facet;
       sum += c.sample_weight[k] * density;
       continue;

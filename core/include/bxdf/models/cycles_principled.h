@@ -159,6 +159,12 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
   // Lobe values of closure k without the closure weight.
   RGB lobe_f(int k, const Vec3& wo, const Vec3& wi, float eta, bool back_face) const;
   float lobe_density(int k, const Vec3& wo, const Vec3& wi, float eta, bool back_face) const;
+  // The glass's refraction lobe for the index ratio of wo's side.
+  cycles::GGXRefraction refraction_lobe(float eta) const {
+    cycles::GGXRefraction lobe = s_.glass_refraction;
+    lobe.eta = eta;
+    return lobe;
+  }
   // `cover`: the rough refraction draws its cover samples too (the exact sampler), or not
   // (Cycles' sampler).
   bool lobe_sample(int k, const Vec3& wo, Point2 u, float eta, bool back_face, bool cover,
