@@ -209,59 +209,17 @@ class BxDFImpl : public BxDF {
   BxDFSample sample_f(const Vec3& wo, Point2 u) const final { return sample_one(wo, u); }
   float pdf(const Vec3& wo, const Vec3& wi) const final { return pdf_one(wo, wi); }
   // f_one and pdf_one with the directions normalised once.
-  RGB f_pdf(const Vec3& wo_in, const Vec3& wi_in, float* pdf_out) const final {
-    Vec3 wo = wo_in, wi = wi_in;
-    if (!normalize_direction(wo) || !normalize_direction(wi)) {
-      *pdf_out = 0.0f;
-      return RGB(0.0f);
-    }
-    if constexpr (has_eval_density<Derived>::value) {
-      float density = 0.0f;
-      const RGB f = derived().eval_density(wo, wi, &density);
-      *pdf_out = sanitize_nonnegative(density);
-      return sanitize_nonnegative(f);
-    } else {
-      *pdf_out = sanitize_nonnegative(derived().density(wo, wi));
-      return sanitize_nonnegative(derived().eval(wo, wi));
-    }
+  RGB f_pdf(const Vec3& wo, const Vec3& wi, float* pdf_out) const final {
+    return f_pdf_picked<ClosurePick::kByWeight>(wo, wi, pdf_out);
   }
-  BxDFSample sample_f_defensive(const Vec3& wo_in, Point2 u) const final {
-    if constexpr (has_closure_pick<Derived>::value) {
-      Vec3 wo = wo_in;
-      if (!normalize_direction(wo)) return BxDFSample();
-      return guard_sample(derived().sample(wo, clamp_u(u), ClosurePick::kDefensive));
-    } else {
-      return sample_one(wo_in, u);
-    }
+  BxDFSample sample_f_defensive(const Vec3& wo, Point2 u) const final {
+    return sample_picked<defensive_pick()>(wo, u);
   }
-  float pdf_defensive(const Vec3& wo_in, const Vec3& wi_in) const final {
-    if constexpr (has_closure_pick<Derived>::value) {
-      Vec3 wo = wo_in, wi = wi_in;
-      if (!normalize_direction(wo) || !normalize_direction(wi)) return 0.0f;
-      return sanitize_nonnegative(derived().density(wo, wi, ClosurePick::kDefensive));
-    } else {
-      return pdf_one(wo_in, wi_in);
-    }
+  float pdf_defensive(const Vec3& wo, const Vec3& wi) const final {
+    return pdf_picked<defensive_pick()>(wo, wi);
   }
-  RGB f_pdf_defensive(const Vec3& wo_in, const Vec3& wi_in, float* pdf_out) const final {
-    if constexpr (has_closure_pick<Derived>::value) {
-      Vec3 wo = wo_in, wi = wi_in;
-      if (!normalize_direction(wo) || !normalize_direction(wi)) {
-        *pdf_out = 0.0f;
-        return RGB(0.0f);
-      }
-      if constexpr (has_eval_density<Derived>::value) {
-        float density = 0.0f;
-        const RGB f = derived().eval_density(wo, wi, &density, ClosurePick::kDefensive);
-        *pdf_out = sanitize_nonnegative(density);
-        return sanitize_nonnegative(f);
-      } else {
-        *pdf_out = sanitize_nonnegative(derived().density(wo, wi, ClosurePick::kDefensive));
-        return sanitize_nonnegative(derived().eval(wo, wi));
-      }
-    } else {
-      return f_pdf(wo_in, wi_in, pdf_out);
-    }
+  RGB f_pdf_defensive(const Vec3& wo, const Vec3& wi, float* pdf_out) const final {
+    return f_pdf_picked<defensive_pick()>(wo, wi, pdf_out);
   }
   BxDFSample sample_f_exact(const Vec3& wo_in, Point2 u) const final {
     if constexpr (has_sample_exact<Derived>::value) {
@@ -461,13 +419,50 @@ class BxDFImpl : public BxDF {
     if (!normalize_direction(wo) || !normalize_direction(wi)) return RGB(0.0f);
     return sanitize_nonnegative(derived().eval(wo, wi));
   }
-  inline float pdf_one(Vec3 wo, Vec3 wi) const {
-    if (!normalize_direction(wo) || !normalize_direction(wi)) return 0.0f;
-    return sanitize_nonnegative(derived().density(wo, wi));
-  }
+  inline float pdf_one(Vec3 wo, Vec3 wi) const { return pdf_picked<ClosurePick::kByWeight>(wo, wi); }
   inline BxDFSample sample_one(Vec3 wo, Point2 u) const {
+    return sample_picked<ClosurePick::kByWeight>(wo, u);
+  }
+
+  // The pick the *_defensive calls make: kDefensive where the model picks among closures.
+  static constexpr ClosurePick defensive_pick() {
+    return has_closure_pick<Derived>::value ? ClosurePick::kDefensive : ClosurePick::kByWeight;
+  }
+  // The model's density and sample with its closures picked by kPick (kByWeight: the calls
+  // every model has).
+  template <ClosurePick kPick>
+  float density_of(const Vec3& wo, const Vec3& wi) const {
+    if constexpr (kPick == ClosurePick::kByWeight) return derived().density(wo, wi);
+    else return derived().density(wo, wi, kPick);
+  }
+  template <ClosurePick kPick>
+  float pdf_picked(Vec3 wo, Vec3 wi) const {
+    if (!normalize_direction(wo) || !normalize_direction(wi)) return 0.0f;
+    return sanitize_nonnegative(density_of<kPick>(wo, wi));
+  }
+  template <ClosurePick kPick>
+  BxDFSample sample_picked(Vec3 wo, Point2 u) const {
     if (!normalize_direction(wo)) return BxDFSample();
-    return sample_kernel(wo, clamp_u(u));
+    if constexpr (kPick == ClosurePick::kByWeight) return sample_kernel(wo, clamp_u(u));
+    else return guard_sample(derived().sample(wo, clamp_u(u), kPick));
+  }
+  template <ClosurePick kPick>
+  RGB f_pdf_picked(Vec3 wo, Vec3 wi, float* pdf_out) const {
+    if (!normalize_direction(wo) || !normalize_direction(wi)) {
+      *pdf_out = 0.0f;
+      return RGB(0.0f);
+    }
+    if constexpr (has_eval_density<Derived>::value) {
+      float density = 0.0f;
+      RGB f;
+      if constexpr (kPick == ClosurePick::kByWeight) f = derived().eval_density(wo, wi, &density);
+      else f = derived().eval_density(wo, wi, &density, kPick);
+      *pdf_out = sanitize_nonnegative(density);
+      return sanitize_nonnegative(f);
+    } else {
+      *pdf_out = sanitize_nonnegative(density_of<kPick>(wo, wi));
+      return sanitize_nonnegative(derived().eval(wo, wi));
+    }
   }
 };
 
