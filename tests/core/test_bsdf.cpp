@@ -289,6 +289,16 @@ TEST(BSDF, FCosPdfEqualsFCosAndPdfForEveryModel) {
   layered.set("sheen", 0.4);
   const BxDFPtr principled = make("cycles_principled", layered);
   std::vector<BxDFPtr> models{principled};
+  // The Glass and Refraction nodes' defaults are sharp (a delta): their rough lobes too, which
+  // give f and pdf together from one Fresnel (CyclesRoughDielectric::eval_density).
+  for (const char* node : {"cycles_glass", "cycles_refraction"}) {
+    for (const char* distribution : {"ggx", "beckmann"}) {
+      ParamSet rough;
+      rough.set("distribution", std::string(distribution));
+      rough.set("roughness", 0.4);
+      models.push_back(make(node, rough));
+    }
+  }
   for (const ModelInfo& info : bxdf::models()) models.push_back(make(info.name));
   for (const BxDFPtr& m : models) {
     for (bool horizon : {false, true}) {

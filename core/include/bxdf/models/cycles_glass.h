@@ -75,10 +75,17 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
 
   RGB eval(const Vec3& wo, const Vec3& wi) const {
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
+    return lobe_f(c, cycles_dielectric_weights(node_, c.wo.z, c.eta));
+  }
+  // eval and density at once: the pair turned and its closure weights (a Fresnel) worked out
+  // once, as the light sample's MIS and every BSDF sample need both.
+  RGB eval_density(const Vec3& wo, const Vec3& wi, float* pdf,
+                   ClosurePick pick = ClosurePick::kByWeight) const {
+    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
     const CyclesDielectricWeights w = cycles_dielectric_weights(node_, c.wo.z, c.eta);
-    const float f = c.wi.z > 0.0f ? w.reflection * reflection_.f(c.wo, c.wi)
-                                  : w.refraction * refraction_.f(c.wo, c.wi, c.eta);
-    return color_ * f;
+    float facet_refraction;
+    *pdf = lobe_density(c, w, pick, &facet_refraction);
+    return lobe_f(c, w);
   }
 
   // Cycles' sample: the refraction from its facets alone, so f·|cos θi|/pdf is f over the
@@ -92,8 +99,10 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
   bool sample_f_is_exact() const override { return false; }
 
   float density(const Vec3& wo, const Vec3& wi, ClosurePick pick = ClosurePick::kByWeight) const {
+    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
     float facet_refraction;
-    return density_parts(wo, wi, pick, &facet_refraction);
+    return lobe_density(c, cycles_dielectric_weights(node_, c.wo.z, c.eta), pick,
+                        &facet_refraction);
   }
 
   // The share of refraction samples drawn as cover samples (see the file comment), for wo
@@ -115,8 +124,8 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     BxDFSample s;
     if (wo.z == 0.0f) return s;
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wo, ior_);
-    const float p_reflect =
-        cycles_dielectric_weights(node_, c.wo.z, c.eta).sampling(pick).reflection_probability();
+    const CyclesDielectricWeights w = cycles_dielectric_weights(node_, c.wo.z, c.eta);
+    const float p_reflect = w.sampling(pick).reflection_probability();
     Vec3 wi;
     bool ok;
     if (u.x < p_reflect) {
@@ -137,9 +146,12 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     s.wi = c.mirrored ? Vec3(wi.x, wi.y, -wi.z) : wi;
     // Grazing rough refraction is steep in float: return the bits f() will see.
     if (!ok || !snap_to_unit(s.wi)) return BxDFSample();
-    s.f = eval(wo, s.wi);
+    // The pair turned as wo was (the same index, the same weights), with the snapped wi.
+    const cycles::CanonicalPair ci{c.wo, c.mirrored ? Vec3(s.wi.x, s.wi.y, -s.wi.z) : s.wi,
+                                   c.eta, c.mirrored};
+    s.f = lobe_f(ci, w);
     float drawn;
-    s.pdf = density_parts(wo, s.wi, pick, &drawn);
+    s.pdf = lobe_density(ci, w, pick, &drawn);
     if (!cover_refraction && s.wi.z * wo.z < 0.0f) {
       // The refraction was drawn from the facets alone: f over the density of that draw.
       if (!(drawn > 0.0f)) return BxDFSample();
@@ -148,13 +160,18 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     return s;
   }
 
-  // density(), and in *facet_refraction the part of it the refraction's facets would give
-  // without the cover, (1 − P(reflect)) × their density (0 for a reflected pair).
-  float density_parts(const Vec3& wo, const Vec3& wi, ClosurePick pick,
-                      float* facet_refraction) const {
-    const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
-    const float p_reflect =
-        cycles_dielectric_weights(node_, c.wo.z, c.eta).sampling(pick).reflection_probability();
+  // f of a turned pair whose closure weights are w.
+  RGB lobe_f(const cycles::CanonicalPair& c, const CyclesDielectricWeights& w) const {
+    const float f = c.wi.z > 0.0f ? w.reflection * reflection_.f(c.wo, c.wi)
+                                  : w.refraction * refraction_.f(c.wo, c.wi, c.eta);
+    return color_ * f;
+  }
+  // density() of a turned pair whose closure weights are w, and in *facet_refraction the part
+  // of it the refraction's facets would give without the cover, (1 − P(reflect)) × their
+  // density (0 for a reflected pair).
+  float lobe_density(const cycles::CanonicalPair& c, const CyclesDielectricWeights& w,
+                     ClosurePick pick, float* facet_refraction) const {
+    const float p_reflect = w.sampling(pick).reflection_probability();
     *facet_refraction = 0.0f;
     if (c.wi.z > 0.0f) return p_reflect * reflection_.pdf(c.wo, c.wi);
     const float cover = cover_share(c.wo.z, c.eta);
