@@ -7,7 +7,6 @@
 #include "bxdf/frame.h"
 #include "bxdf/params.h"
 #include "bxdf/sampling.h"
-#include "bxdf/render/spherical_rectangle.h"
 
 namespace bxdf::render {
 
@@ -159,6 +158,7 @@ Light area_light_from_power(const Vec3& centre, const Vec3& axis_u, const Vec3& 
   l.position = centre;
   l.axis_u = axis_u;
   l.axis_v = axis_v;
+  l.rectangle = SphericalRectangle(centre, axis_u, axis_v);
   l.direction = require_direction("area light", normal);
   l.shape = shape;
   const float area = length(axis_u) * length(axis_v) * (shape == AreaShape::Ellipse ? kPi / 4 : 1);
@@ -232,7 +232,7 @@ LightSample sample_light(const Light& light, const Vec3& p, Point2 u) {
       if (dot(light.position - p, light.direction) > 0.0f) return s;
       Vec3 q;
       if (light.shape == AreaShape::Rectangle) {
-        s.pdf = sample_spherical_rectangle(p, light.position, light.axis_u, light.axis_v, u, &q);
+        s.pdf = light.rectangle.sample(p, u, &q);
       } else {
         const Point2 d = sample_concentric_disk(u);
         q = light.position + light.axis_u * (0.5f * d.x) + light.axis_v * (0.5f * d.y);
@@ -312,7 +312,7 @@ bool intersect_light(const Light& light, const Vec3& origin, const Vec3& dir, fl
   hit->radiance = light.radiance;
   hit->pdf = light.shape == AreaShape::Ellipse
                  ? light.inv_area * area_to_solid_angle(light.direction, -dir, t)
-                 : spherical_rectangle_pdf(origin, light.position, light.axis_u, light.axis_v);
+                 : light.rectangle.pdf(origin);
   return hit->pdf > 0.0f && std::isfinite(hit->pdf);
 }
 

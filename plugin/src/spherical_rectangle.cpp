@@ -10,31 +10,38 @@ namespace {
 // acosf; the polynomial is inline and as accurate.
 float safe_acosf(float x) { return acos_poly(clamp(x, -1.0f, 1.0f)); }
 
+}  // namespace
+
+SphericalRectangle::SphericalRectangle(const Vec3& centre, const Vec3& axis_u, const Vec3& axis_v)
+    : corner_(centre - axis_u * 0.5f - axis_v * 0.5f),
+      len_u_(length(axis_u)),
+      len_v_(length(axis_v)) {
+  x_ = axis_u / len_u_;
+  y_ = axis_v / len_v_;
+  z_ = cross(x_, y_);
+}
+
 // The rectangle in a frame at p: x along axis_u, y along axis_v, z towards p's side flipped so
 // that the rectangle lies at z0 <= 0; corners (x0..x1, y0..y1).
-struct RectangleFrame {
-  Vec3 x, y, z;
+struct SphericalRectangle::Frame {
+  Vec3 z;
   float x0, x1, y0, y1, z0;
   float b0, b1, k, solid_angle;
 };
 
-RectangleFrame rectangle_frame(const Vec3& p, const Vec3& centre, const Vec3& axis_u,
-                               const Vec3& axis_v) {
-  RectangleFrame f;
-  const float len_u = length(axis_u), len_v = length(axis_v);
-  f.x = axis_u / len_u;
-  f.y = axis_v / len_v;
-  f.z = cross(f.x, f.y);
-  const Vec3 dir = centre - axis_u * 0.5f - axis_v * 0.5f - p;
+SphericalRectangle::Frame SphericalRectangle::frame(const Vec3& p) const {
+  Frame f;
+  f.z = z_;
+  const Vec3 dir = corner_ - p;
   f.z0 = dot(dir, f.z);
   if (f.z0 > 0.0f) {
     f.z = -f.z;
     f.z0 = -f.z0;
   }
-  f.x0 = dot(dir, f.x);
-  f.y0 = dot(dir, f.y);
-  f.x1 = f.x0 + len_u;
-  f.y1 = f.y0 + len_v;
+  f.x0 = dot(dir, x_);
+  f.y0 = dot(dir, y_);
+  f.x1 = f.x0 + len_u_;
+  f.y1 = f.y0 + len_v_;
   // Normals of the four edge planes through p, and the spherical rectangle's internal angles.
   const float diff[4] = {f.x0 - f.x1, f.y1 - f.y0, f.x1 - f.x0, f.y0 - f.y1};
   const float base[4] = {f.y0, f.x1, f.y1, f.x0};
@@ -54,11 +61,8 @@ RectangleFrame rectangle_frame(const Vec3& p, const Vec3& centre, const Vec3& ax
   return f;
 }
 
-}  // namespace
-
-float sample_spherical_rectangle(const Vec3& p, const Vec3& centre, const Vec3& axis_u,
-                                 const Vec3& axis_v, Point2 u, Vec3* q) {
-  const RectangleFrame f = rectangle_frame(p, centre, axis_u, axis_v);
+float SphericalRectangle::sample(const Vec3& p, Point2 u, Vec3* q) const {
+  const Frame f = frame(p);
   if (!(f.solid_angle > 0.0f) || f.z0 == 0.0f) return 0.0f;
   // u.x picks the x coordinate by solid angle, u.y the y coordinate on that column.
   const float au = u.x * f.solid_angle + f.k;
@@ -72,13 +76,12 @@ float sample_spherical_rectangle(const Vec3& p, const Vec3& centre, const Vec3& 
   const float h1 = f.y1 / std::sqrt(d2 + f.y1 * f.y1);
   const float hv = h0 + u.y * (h1 - h0), hv2 = hv * hv;
   const float yv = hv2 < 1.0f - 1e-6f ? hv * std::sqrt(d2) / std::sqrt(1.0f - hv2) : f.y1;
-  *q = p + f.x * xu + f.y * yv + f.z * f.z0;
+  *q = p + x_ * xu + y_ * yv + f.z * f.z0;
   return 1.0f / f.solid_angle;
 }
 
-float spherical_rectangle_pdf(const Vec3& p, const Vec3& centre, const Vec3& axis_u,
-                              const Vec3& axis_v) {
-  const RectangleFrame f = rectangle_frame(p, centre, axis_u, axis_v);
+float SphericalRectangle::pdf(const Vec3& p) const {
+  const Frame f = frame(p);
   return f.solid_angle > 0.0f && f.z0 != 0.0f ? 1.0f / f.solid_angle : 0.0f;
 }
 

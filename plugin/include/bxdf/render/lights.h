@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "bxdf/math.h"
+#include "bxdf/render/spherical_rectangle.h"
 #include "bxdf/spectrum.h"
 
 namespace bxdf::render {
@@ -61,6 +62,9 @@ struct Light {
   // Area: full edge vectors along the light's X and Y (size_x, size_y, scaled), and the shape.
   Vec3 axis_u, axis_v;
   AreaShape shape = AreaShape::Rectangle;
+  // Area: the rectangle those edges span, for sampling the solid angle it subtends (made with
+  // them; the rectangle shape samples it).
+  SphericalRectangle rectangle;
   // Mesh: its triangles and their area CDF (cdf.back() == total area).
   std::vector<EmissiveTriangle> triangles;
   std::vector<float> cdf;
