@@ -84,7 +84,7 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
     const CyclesDielectricWeights w = cycles_dielectric_weights(node_, c.wo.z, c.eta);
     float facet_refraction;
-    *pdf = lobe_density(c, w, pick, &facet_refraction);
+    *pdf = lobe_density(c, w.sampling(pick).reflection_probability(), &facet_refraction);
     return lobe_f(c, w);
   }
 
@@ -100,9 +100,10 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
 
   float density(const Vec3& wo, const Vec3& wi, ClosurePick pick = ClosurePick::kByWeight) const {
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
+    const float p_reflect =
+        cycles_dielectric_weights(node_, c.wo.z, c.eta).sampling(pick).reflection_probability();
     float facet_refraction;
-    return lobe_density(c, cycles_dielectric_weights(node_, c.wo.z, c.eta), pick,
-                        &facet_refraction);
+    return lobe_density(c, p_reflect, &facet_refraction);
   }
 
   // The share of refraction samples drawn as cover samples (see the file comment), for wo
@@ -146,12 +147,12 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     s.wi = c.mirrored ? Vec3(wi.x, wi.y, -wi.z) : wi;
     // Grazing rough refraction is steep in float: return the bits f() will see.
     if (!ok || !snap_to_unit(s.wi)) return BxDFSample();
-    // The pair turned as wo was (the same index, the same weights), with the snapped wi.
+    // The pair turned as wo was (the same index, weights and pick), with the snapped wi.
     const cycles::CanonicalPair ci{c.wo, c.mirrored ? Vec3(s.wi.x, s.wi.y, -s.wi.z) : s.wi,
                                    c.eta, c.mirrored};
     s.f = lobe_f(ci, w);
     float drawn;
-    s.pdf = lobe_density(ci, w, pick, &drawn);
+    s.pdf = lobe_density(ci, p_reflect, &drawn);
     if (!cover_refraction && s.wi.z * wo.z < 0.0f) {
       // The refraction was drawn from the facets alone: f over the density of that draw.
       if (!(drawn > 0.0f)) return BxDFSample();
@@ -166,12 +167,11 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
                                   : w.refraction * refraction_.f(c.wo, c.wi, c.eta);
     return color_ * f;
   }
-  // density() of a turned pair whose closure weights are w, and in *facet_refraction the part
-  // of it the refraction's facets would give without the cover, (1 − P(reflect)) × their
-  // density (0 for a reflected pair).
-  float lobe_density(const cycles::CanonicalPair& c, const CyclesDielectricWeights& w,
-                     ClosurePick pick, float* facet_refraction) const {
-    const float p_reflect = w.sampling(pick).reflection_probability();
+  // density() of a turned pair whose reflection is picked with p_reflect, and in
+  // *facet_refraction the part of it the refraction's facets would give without the cover,
+  // (1 − p_reflect) × their density (0 for a reflected pair).
+  float lobe_density(const cycles::CanonicalPair& c, float p_reflect,
+                     float* facet_refraction) const {
     *facet_refraction = 0.0f;
     if (c.wi.z > 0.0f) return p_reflect * reflection_.pdf(c.wo, c.wi);
     const float cover = cover_share(c.wo.z, c.eta);

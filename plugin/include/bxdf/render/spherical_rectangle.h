@@ -9,7 +9,7 @@ namespace bxdf::render {
 
 // The rectangle centre ± axis_u/2 ± axis_v/2 (axes perpendicular), with what of its frame does
 // not depend on the shading point (its corner, unit axes and edge lengths) worked out once, when
-// the light is made: a light sample then spends no square root or division on it.
+// the light is made, instead of at every light sample and every BSDF ray that hits it.
 class SphericalRectangle {
  public:
   SphericalRectangle() = default;
