@@ -147,9 +147,8 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     s.wi = c.mirrored ? Vec3(wi.x, wi.y, -wi.z) : wi;
     // Grazing rough refraction is steep in float: return the bits f() will see.
     if (!ok || !snap_to_unit(s.wi)) return BxDFSample();
-    // The pair turned as wo was (the same index, weights and pick), with the snapped wi.
-    const cycles::CanonicalPair ci{c.wo, c.mirrored ? Vec3(s.wi.x, s.wi.y, -s.wi.z) : s.wi,
-                                   c.eta, c.mirrored};
+    // The snapped pair, turned as wo was: its closure weights and pick are those above.
+    const cycles::CanonicalPair ci = cycles::canonical_pair(wo, s.wi, ior_);
     s.f = lobe_f(ci, w);
     float drawn;
     s.pdf = lobe_density(ci, p_reflect, &drawn);
