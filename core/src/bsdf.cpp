@@ -80,8 +80,7 @@ void BSDF::use_defensive_sampling() {
 float BSDF::component_pdf(int i, const Vec3& wo, const Vec3& wi) const {
   Vec3 g;
   if (clipped_lobe(i, wo, &g)) return cosine_above_plane_pdf(wi, g);
-  return component_picks_defensively_ ? components_[i]->pdf_defensive(wo, wi)
-                                      : components_[i]->pdf(wo, wi);
+  return model_pdf(*components_[i], wo, wi);
 }
 
 int BSDF::num_components(uint32_t mask) const {
@@ -115,12 +114,8 @@ RGB BSDF::component_f_pdf(int i, const Vec3& wo, const Vec3& wi, const Vec3& wi_
     if (weighs) *pdf = cosine_above_plane_pdf(wi, g);
     return scatters ? component_f(i, wo, wi, wi_world) : RGB(0.0f);
   }
-  if (scatters && weighs) {
-    const RGB f = component_picks_defensively_ ? b.f_pdf_defensive(wo, wi, pdf)
-                                               : b.f_pdf(wo, wi, pdf);
-    return bump_shadowed(i, f, wo, wi, wi_world);
-  }
-  if (weighs) *pdf = component_picks_defensively_ ? b.pdf_defensive(wo, wi) : b.pdf(wo, wi);
+  if (scatters && weighs) return bump_shadowed(i, model_f_pdf(b, wo, wi, pdf), wo, wi, wi_world);
+  if (weighs) *pdf = model_pdf(b, wo, wi);
   return scatters ? component_f(i, wo, wi, wi_world) : RGB(0.0f);
 }
 
@@ -257,7 +252,7 @@ BSDFSample BSDF::sample_f(const Vec3& wo_world, Point2 u, uint32_t mask) const {
   // back in 16-byte pieces, a store-forwarding stall perf put at ~8% of PathTracer::step.
   Vec3 g;
   const BxDFSample s = clipped_lobe(picked, wo, &g) ? sample_clipped_lobe(b, wo, g, u_remapped)
-                                                     : component_sample(b, wo, u_remapped);
+                                                     : model_sample(b, wo, u_remapped);
   if (!s.valid()) return out;
 
   out.wi = frame.to_world(s.wi);

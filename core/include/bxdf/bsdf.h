@@ -108,8 +108,16 @@ class BSDF {
   bool defensive_ = false;  // use_defensive_sampling() was called
   // use_defensive_sampling() on a BSDF of one component: its closures are picked defensively.
   bool component_picks_defensively_ = false;
-  BxDFSample component_sample(const BxDF& b, const Vec3& wo, Point2 u) const {
+  // A component model's own sample, pdf and f-with-pdf, its closures picked defensively where
+  // component_picks_defensively_ says so: the one place that chooses between the two calls.
+  BxDFSample model_sample(const BxDF& b, const Vec3& wo, Point2 u) const {
     return component_picks_defensively_ ? b.sample_f_defensive(wo, u) : b.sample_f(wo, u);
+  }
+  float model_pdf(const BxDF& b, const Vec3& wo, const Vec3& wi) const {
+    return component_picks_defensively_ ? b.pdf_defensive(wo, wi) : b.pdf(wo, wi);
+  }
+  RGB model_f_pdf(const BxDF& b, const Vec3& wo, const Vec3& wi, float* pdf) const {
+    return component_picks_defensively_ ? b.f_pdf_defensive(wo, wi, pdf) : b.f_pdf(wo, wi, pdf);
   }
   // Component i's local horizon normal when its cosine lobe is clipped at wo (local), else
   // false: no horizon, another kind of model, wo below its frame, or the plane below it.
