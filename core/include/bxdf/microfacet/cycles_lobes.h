@@ -43,22 +43,23 @@ struct ReflectionLobe {
   Distribution distribution;
 
   float f(const Vec3& wo, const Vec3& wi) const {
-    const float cos_o = wo.z, cos_i = wi.z;
-    if (!(cos_o > 0.0f) || !(cos_i > 0.0f)) return 0.0f;
-    Vec3 wh = wo + wi;
-    if (!normalize_direction(wh)) return 0.0f;
-    const float d = distribution.D(wh);
-    if (d == 0.0f) return 0.0f;
-    const float g = distribution.G1(wo) * distribution.G1(wi);  // separable, as Cycles 3.4
-    return d * g / (4.0f * cos_o * cos_i);
+    Vec3 wh;
+    return half_vector(wo, wi, &wh) ? f_at(wo, wi, wh) : 0.0f;
   }
   float pdf(const Vec3& wo, const Vec3& wi) const {
-    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
-    Vec3 wh = wo + wi;
-    if (!normalize_direction(wh)) return 0.0f;
-    const float wo_h = dot(wo, wh);
-    if (!(wo_h > 0.0f)) return 0.0f;
-    return distribution.pdf_wh(wo, wh) / (4.0f * wo_h);
+    Vec3 wh;
+    return half_vector(wo, wi, &wh) ? pdf_at(wo, wh) : 0.0f;
+  }
+  // f and pdf at once, the same bits: one half vector, one D(ωh) (and for GGX one G1(ωo)),
+  // which the compiler shares between the two inlined formulas.
+  float f_pdf(const Vec3& wo, const Vec3& wi, float* pdf) const {
+    Vec3 wh;
+    if (!half_vector(wo, wi, &wh)) {
+      *pdf = 0.0f;
+      return 0.0f;
+    }
+    *pdf = pdf_at(wo, wh);
+    return f_at(wo, wi, wh);
   }
   // False when the drawn facet does not reflect wo above the surface.
   bool sample(const Vec3& wo, Point2 u, Vec3* wi) const {
@@ -67,6 +68,26 @@ struct ReflectionLobe {
     *wi = reflect(wo, wh);
     return wi->z > 0.0f;
   }
+
+ private:
+  // The unit half vector of a pair that is above the surface on both sides.
+  static bool half_vector(const Vec3& wo, const Vec3& wi, Vec3* wh) {
+    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return false;
+    *wh = wo + wi;
+    return normalize_direction(*wh);
+  }
+  float f_at(const Vec3& wo, const Vec3& wi, const Vec3& wh) const {
+    const float d = distribution.D(wh);
+    if (d == 0.0f) return 0.0f;
+    const float g = distribution.G1(wo) * distribution.G1(wi);  // separable, as Cycles 3.4
+    return d * g / (4.0f * wo.z * wi.z);
+  }
+  float pdf_at(const Vec3& wo, const Vec3& wh) const {
+    const float wo_h = dot(wo, wh);
+    // Without a branch, so that D(ωh) here is computed on every path and f_at can reuse it.
+    const float pdf = distribution.pdf_wh(wo, wh) / (4.0f * wo_h);
+    return wo_h > 0.0f ? pdf : 0.0f;
+  }
 };
 
 template <class Distribution>
@@ -74,37 +95,59 @@ struct RefractionLobe {
   Distribution distribution;
 
   float f(const Vec3& wo, const Vec3& wi, float eta) const {
-    const float cos_o = wo.z, cos_i = wi.z;
-    if (!(cos_o > 0.0f) || !(cos_i < 0.0f)) return 0.0f;
-    const Vec3 ht = -(wo + wi * eta);
-    const float ht2 = dot(ht, ht);
-    Vec3 wh = ht;
-    if (!normalize_direction(wh)) return 0.0f;
-    if (wh.z < 0.0f) wh = -wh;  // D and G are even in ωh; the sign of ht is not a side check
-    const float d = distribution.D(wh);
-    if (d == 0.0f) return 0.0f;
-    const float g = distribution.G1(wo) * distribution.G1(wi);
-    return std::fabs(dot(wh, wi) * dot(wh, wo)) * eta * eta * d * g /
-           (cos_o * -cos_i * ht2);
+    Vec3 wh;
+    float ht2;
+    return half_vector(wo, wi, eta, &wh, &ht2) ? f_at(wo, wi, eta, wh, ht2) : 0.0f;
   }
   // The density of sample(): D(ωh) pdf of the facet times |dωh/dωi| = η² |ωi·ωh| / |ht|²,
   // on the pairs a facet facing wo refracts into.
   float pdf(const Vec3& wo, const Vec3& wi, float eta) const {
-    if (!(wo.z > 0.0f) || !(wi.z < 0.0f)) return 0.0f;
-    const Vec3 ht = -(wo + wi * eta);
-    Vec3 wh = ht;
-    if (!normalize_direction(wh)) return 0.0f;
-    if (wh.z < 0.0f) wh = -wh;
-    const float wo_h = dot(wo, wh), wi_h = dot(wi, wh);
-    if (!(wo_h > 0.0f) || !(wi_h < 0.0f)) return 0.0f;
-    const float denom = wo_h + eta * wi_h;
-    return distribution.pdf_wh(wo, wh) * eta * eta * -wi_h / (denom * denom);
+    Vec3 wh;
+    float ht2;
+    return half_vector(wo, wi, eta, &wh, &ht2) ? pdf_at(wo, wi, eta, wh) : 0.0f;
+  }
+  // f and pdf at once, the same bits: one half vector and one D(ωh) (and for GGX one G1(ωo)).
+  float f_pdf(const Vec3& wo, const Vec3& wi, float eta, float* pdf) const {
+    Vec3 wh;
+    float ht2;
+    if (!half_vector(wo, wi, eta, &wh, &ht2)) {
+      *pdf = 0.0f;
+      return 0.0f;
+    }
+    *pdf = pdf_at(wo, wi, eta, wh);
+    return f_at(wo, wi, eta, wh, ht2);
   }
   // False when the facet faces away from wo or reflects it totally.
   bool sample(const Vec3& wo, Point2 u, float eta, Vec3* wi) const {
     const Vec3 wh = distribution.sample_wh(wo, u);
     if (!(dot(wo, wh) > 0.0f)) return false;
     return refract(wo, wh, 1.0f / eta, wi) && wi->z < 0.0f;
+  }
+
+ private:
+  // ωh (turned up: D and G are even in ωh, and the sign of ht is not a side check) and |ht|²
+  // of a pair with wo above the surface and wi below it.
+  static bool half_vector(const Vec3& wo, const Vec3& wi, float eta, Vec3* wh, float* ht2) {
+    if (!(wo.z > 0.0f) || !(wi.z < 0.0f)) return false;
+    const Vec3 ht = -(wo + wi * eta);
+    *ht2 = dot(ht, ht);
+    *wh = ht;
+    if (!normalize_direction(*wh)) return false;
+    if (wh->z < 0.0f) *wh = -*wh;
+    return true;
+  }
+  float f_at(const Vec3& wo, const Vec3& wi, float eta, const Vec3& wh, float ht2) const {
+    const float d = distribution.D(wh);
+    if (d == 0.0f) return 0.0f;
+    const float g = distribution.G1(wo) * distribution.G1(wi);
+    return std::fabs(dot(wh, wi) * dot(wh, wo)) * eta * eta * d * g / (wo.z * -wi.z * ht2);
+  }
+  float pdf_at(const Vec3& wo, const Vec3& wi, float eta, const Vec3& wh) const {
+    const float wo_h = dot(wo, wh), wi_h = dot(wi, wh);
+    const float denom = wo_h + eta * wi_h;
+    // Without a branch, so that D(ωh) here is computed on every path and f_at can reuse it.
+    const float pdf = distribution.pdf_wh(wo, wh) * eta * eta * -wi_h / (denom * denom);
+    return wo_h > 0.0f && wi_h < 0.0f ? pdf : 0.0f;
   }
 };
 

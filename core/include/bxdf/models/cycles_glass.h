@@ -84,8 +84,8 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     const cycles::CanonicalPair c = cycles::canonical_pair(wo, wi, ior_);
     const CyclesDielectricWeights w = cycles_dielectric_weights(node_, c.wo.z, c.eta);
     float facet_refraction;
-    *pdf = lobe_density(c, w.sampling(pick).reflection_probability(), &facet_refraction);
-    return lobe_f(c, w);
+    return lobe_f_density(c, w, w.sampling(pick).reflection_probability(), pdf,
+                          &facet_refraction);
   }
 
   // Cycles' sample: the refraction from its facets alone, so f·|cos θi|/pdf is f over the
@@ -149,9 +149,8 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
     if (!ok || !snap_to_unit(s.wi)) return BxDFSample();
     // The snapped pair, turned as wo was: its closure weights and pick are those above.
     const cycles::CanonicalPair ci = cycles::canonical_pair(wo, s.wi, ior_);
-    s.f = lobe_f(ci, w);
     float drawn;
-    s.pdf = lobe_density(ci, p_reflect, &drawn);
+    s.f = lobe_f_density(ci, w, p_reflect, &s.pdf, &drawn);
     if (!cover_refraction && s.wi.z * wo.z < 0.0f) {
       // The refraction was drawn from the facets alone: f over the density of that draw.
       if (!(drawn > 0.0f)) return BxDFSample();
@@ -173,9 +172,29 @@ class CyclesRoughDielectric final : public BxDFImpl<CyclesRoughDielectric<Distri
                      float* facet_refraction) const {
     *facet_refraction = 0.0f;
     if (c.wi.z > 0.0f) return p_reflect * reflection_.pdf(c.wo, c.wi);
-    const float cover = cover_share(c.wo.z, c.eta);
     const float facet = refraction_.pdf(c.wo, c.wi, c.eta);
     *facet_refraction = (1.0f - p_reflect) * facet;
+    return refraction_density(c, p_reflect, facet);
+  }
+  // lobe_f and lobe_density at once: each lobe's f and pdf share its half vector and D.
+  RGB lobe_f_density(const cycles::CanonicalPair& c, const CyclesDielectricWeights& w,
+                     float p_reflect, float* density, float* facet_refraction) const {
+    *facet_refraction = 0.0f;
+    float pdf;
+    if (c.wi.z > 0.0f) {
+      const float f = reflection_.f_pdf(c.wo, c.wi, &pdf);
+      *density = p_reflect * pdf;
+      return color_ * (w.reflection * f);
+    }
+    const float f = refraction_.f_pdf(c.wo, c.wi, c.eta, &pdf);
+    *facet_refraction = (1.0f - p_reflect) * pdf;
+    *density = refraction_density(c, p_reflect, pdf);
+    return color_ * (w.refraction * f);
+  }
+  // A refracted pair's density, given its facets' density: the cover samples' and the
+  // facets' mixture, times the chance of picking the refraction.
+  float refraction_density(const cycles::CanonicalPair& c, float p_reflect, float facet) const {
+    const float cover = cover_share(c.wo.z, c.eta);
     return (1.0f - p_reflect) * (cover * cycles::refraction_cover_pdf(c.wi) + (1.0f - cover) * facet);
   }
 

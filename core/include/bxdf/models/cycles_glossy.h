@@ -33,6 +33,17 @@ class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
     }
     return color_ * lobe_.f(wo, wi);
   }
+  // eval and density at once (one half vector and D): the light sample's MIS and every BSDF
+  // sample need both.
+  RGB eval_density(Vec3 wo, Vec3 wi, float* pdf) const {
+    *pdf = 0.0f;
+    if (mirror_ || !same_hemisphere(wo, wi)) return RGB(0.0f);
+    if (wo.z < 0.0f) {
+      wo.z = -wo.z;
+      wi.z = -wi.z;
+    }
+    return color_ * lobe_.f_pdf(wo, wi, pdf);
+  }
 
   BxDFSample sample(Vec3 wo, Point2 u) const {
     BxDFSample s;
@@ -48,8 +59,7 @@ class CyclesGlossy final : public BxDFImpl<CyclesGlossy<Distribution>> {
     } else {
       if (!lobe_.sample(wo, u, &wi)) return s;
       // f and pdf from (wo, wi) exactly as eval() and density() compute them (see microfacet.h).
-      s.pdf = density(wo, wi);
-      s.f = eval(wo, wi);
+      s.f = eval_density(wo, wi, &s.pdf);
       s.flags = kReflection | kGlossy;
     }
     if (below) wi.z = -wi.z;
