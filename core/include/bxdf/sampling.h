@@ -10,7 +10,8 @@ namespace bxdf {
 // scene's render; the map's angles need no range reduction, so their polynomial is inline. The
 // angle is π/4 · t in one half of the square and π/2 − π/4 · t in the other (|t| <= 1), whose
 // cosine and sine are the sine and cosine of π/4 · t. The half is chosen with selects, not a
-// branch: it is a coin toss per sample, and its mispredictions were most of the map's time.
+// branch: which half a sample falls in is a coin toss, so a branch there is mispredicted half
+// the time.
 inline Point2 sample_concentric_disk(Point2 u) {
   const float ox = 2.0f * u.x - 1.0f, oy = 2.0f * u.y - 1.0f;
   const bool x_major = std::fabs(ox) > std::fabs(oy);
