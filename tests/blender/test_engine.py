@@ -78,6 +78,35 @@ def test_a_finished_render_reports_where_its_time_went(small_scene, material, bx
     assert timings["total"] <= operator_seconds
 
 
+def test_partial_results_are_shown_at_their_interval(small_scene, material, monkeypatch):
+    # Every redraw one causes takes a core from the render without a GPU: a render calling back
+    # with an image every 0.1 s for 10 s shows a partial result every PARTIAL_RESULT_INTERVAL
+    # (the first after as long), then the final image.
+    api.assign(material, "lambertian")
+    clock = [1000.0]
+    monkeypatch.setattr(engine.time, "perf_counter", lambda: clock[0])
+    shown = []
+    real_pixels = engine.pixels_for_blender
+    monkeypatch.setattr(engine, "pixels_for_blender",
+                        lambda image, w, h: shown.append(clock[0]) or real_pixels(image, w, h))
+    real_render = renderer.render
+
+    def render(scene_data, settings, on_progress, partial_images=True):
+        image, stats = real_render(scene_data, settings, None, False)
+        for k in range(100):
+            clock[0] += 0.1
+            assert on_progress(k, 100, image) is True
+        return image, stats
+
+    monkeypatch.setattr(renderer, "render", render)
+    bpy.ops.render.render(write_still=True)
+    assert engine.last_error == ""
+    partials = shown[:-1]  # the last is the final image
+    assert len(partials) == int(10.0 / engine.PARTIAL_RESULT_INTERVAL + 1e-6)
+    assert partials[0] - 1000.0 == pytest.approx(engine.PARTIAL_RESULT_INTERVAL, abs=0.11)
+    assert all(b - a >= engine.PARTIAL_RESULT_INTERVAL - 1e-6 for a, b in zip(partials, partials[1:]))
+
+
 def test_blender_without_a_window_asks_for_no_partial_images(small_scene, material, bxdf, monkeypatch):
     assert bpy.app.background  # the Blender tests run in blender -b
     api.assign(material, "lambertian")
