@@ -31,14 +31,26 @@ void PathBatch::prefetch_shading(int live) const {
   }
 }
 
+void PathBatch::draw_numbers(int live) {
+  for (int a = 0; a < live; ++a) {
+    const int k = live_[size_t(a)];
+    number_seeds_[size_t(a)] = samples_[size_t(k)].pixel_seed;
+    number_indices_[size_t(a)] = samples_[size_t(k)].index;
+    number_vertices_[size_t(a)] = paths_[size_t(k)].vertex;
+  }
+  PathSampler::draw_vertices(number_seeds_.data(), number_indices_.data(), number_vertices_.data(),
+                             live, numbers_.data());
+}
+
 int PathBatch::advance_live(int live, PathStats& stats) {
+  draw_numbers(live);
   for (int a = 0; a < live; ++a) {
     programs_[size_t(a)] = nullptr;
     registers_[size_t(a)] = nullptr;
     if (!found_[size_t(a)]) continue;
     PreparedHit& p = prepared_[size_t(a)];
     const int k = live_[size_t(a)];
-    tracer_.prepare(paths_[size_t(k)], sampler(k), hits_[size_t(a)], &p);
+    tracer_.prepare(paths_[size_t(k)], sampler(k, a), hits_[size_t(a)], &p);
     if (p.runs_program) programs_[size_t(a)] = scene_.materials()[p.sp.material].graph.get();
   }
   // Each program over its hits (few materials per batch: one scan per program).
@@ -62,7 +74,7 @@ int PathBatch::advance_live(int live, PathStats& stats) {
     const int k = live_[size_t(a)];
     PathState& path = paths_[size_t(k)];
     const bool found = found_[size_t(a)] != 0;
-    tracer_.advance_deferring_shadow(path, sampler(k), stats, found ? &hits_[size_t(a)] : nullptr,
+    tracer_.advance_deferring_shadow(path, sampler(k, a), stats, found ? &hits_[size_t(a)] : nullptr,
                                      found ? &prepared_[size_t(a)] : nullptr, registers_[size_t(a)],
                                      walk_salt_slot_);
     if (path.shadow.active) {

@@ -42,9 +42,13 @@ class PathBatch {
   void clear() { count_ = 0; }
 
  private:
-  PathSampler sampler(int k) const {
-    return PathSampler(samples_[size_t(k)].pixel_seed, samples_[size_t(k)].index);
+  // Path k's sampler at live slot a, with the numbers drawn for its vertex.
+  PathSampler sampler(int k, int a) const {
+    return PathSampler(samples_[size_t(k)].pixel_seed, samples_[size_t(k)].index,
+                       &numbers_[size_t(a)]);
   }
+  // Draws every live path's numbers of its next vertex together (PathSampler::draw_vertices).
+  void draw_numbers(int live);
   // Starts loading what shading the live paths' hits reads.
   void prefetch_shading(int live) const;
   // Advances the live paths by one vertex each (hits_/found_ per live path): prepares every
@@ -69,6 +73,10 @@ class PathBatch {
   std::array<uint8_t, kSize> camera_;
   std::array<uint8_t, kSize> found_;
   std::array<Hit, kSize> hits_;
+  // Per live path, the numbers of its vertex, and what they were drawn from.
+  std::array<VertexNumbers, kSize> numbers_;
+  std::array<uint32_t, kSize> number_seeds_, number_indices_;
+  std::array<int, kSize> number_vertices_;
   // Per live path: its prepared hit, and where its program's registers are (null: it did not
   // run); the registers of every path in one block, the scene's largest program per path.
   std::array<PreparedHit, kSize> prepared_;

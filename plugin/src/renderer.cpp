@@ -112,10 +112,20 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
     // A batch's camera samples are gathered first and their rays made together
     // (Camera::generate_rays), then traced.
     std::array<PathBatch::Sample, PathBatch::kSize> pending;
+    std::array<uint32_t, PathBatch::kSize> pixel_seeds, sample_indices;
+    std::array<Point2, PathBatch::kSize> filter_numbers;
     std::array<float, PathBatch::kSize> film_x, film_y;
     std::array<Ray, PathBatch::kSize> camera_rays;
     int n_pending = 0;
     const auto trace_batch = [&] {
+      // The pixel filter's numbers of every sample at once, then each sample's film point.
+      PathSampler::draw_filters(pixel_seeds.data(), sample_indices.data(), n_pending,
+                                filter_numbers.data());
+      for (int k = 0; k < n_pending; ++k) {
+        const Point2 offset = filter.sample(filter_numbers[size_t(k)]);
+        film_x[size_t(k)] = static_cast<float>(pending[size_t(k)].x) + 0.5f + offset.x;
+        film_y[size_t(k)] = static_cast<float>(pending[size_t(k)].y) + 0.5f + offset.y;
+      }
       camera.generate_rays(film_x.data(), film_y.data(), n_pending, camera_rays.data());
       for (int k = 0; k < n_pending; ++k) batch.add(pending[size_t(k)], camera_rays[size_t(k)]);
       n_pending = 0;
@@ -135,12 +145,10 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
         const uint32_t pixel_seed =
             PathSampler::pixel_seed(static_cast<uint32_t>(x), static_cast<uint32_t>(y), settings.seed);
         for (int s = first_sample; s < first_sample + count; ++s) {
-          const PathSampler sampler(pixel_seed, static_cast<uint32_t>(s));
-          const Point2 offset = filter.sample(sampler.filter());
           const size_t k = size_t(n_pending++);
           pending[k] = {x, y, pixel_seed, static_cast<uint32_t>(s)};
-          film_x[k] = static_cast<float>(x) + 0.5f + offset.x;
-          film_y[k] = static_cast<float>(y) + 0.5f + offset.y;
+          pixel_seeds[k] = pixel_seed;
+          sample_indices[k] = static_cast<uint32_t>(s);
           if (n_pending == PathBatch::kSize) {
             trace_batch();
             if (cancelled()) break;

@@ -9,6 +9,7 @@
 
 #include "sampler/path_sampler.h"
 #include "sampler/sobol_burley.h"
+#include "sampler/sobol_burley_batch.h"
 
 using namespace bxdf;
 using namespace bxdf::render;
@@ -221,6 +222,70 @@ TEST(PathSampler, DrawsAreTheSetsSobolBurleyPointsAtEveryBounce) {
       ASSERT_EQ(sampler.bsdf(bounce).y, bsdf[1]) << "bounce " << bounce;
       ASSERT_EQ(sampler.russian_roulette(bounce), rr[0]) << "bounce " << bounce;
     }
+  }
+}
+
+TEST(SobolBurley, DimensionOneByBitOperationsIsTheGeneratorMatrix) {
+  for (uint32_t i = 0; i < 4096; ++i)
+    ASSERT_EQ(sobol::reversed_sobol_dimension1(i), sobol::reverse_bits(sobol::sobol(i, 1))) << i;
+  uint32_t index = 0x9e3779b9u;
+  for (int k = 0; k < 100000; ++k, index = sobol::hash(index + 1u))
+    ASSERT_EQ(sobol::reversed_sobol_dimension1(index), sobol::reverse_bits(sobol::sobol(index, 1)))
+        << index;
+}
+
+TEST(SobolBurley, BatchDrawsEqualSingleDrawsBitForBit) {
+  // Every length, so that both the eight-wide part (where the CPU has AVX2) and the remainder
+  // are compared; indices small and full 32-bit.
+  constexpr int kMax = 100;
+  uint32_t reversed[kMax], seed[kMax];
+  float x[kMax], y[kMax], x1[kMax];
+  uint32_t h = 7u;
+  for (int n = 0; n <= kMax; ++n) {
+    for (int i = 0; i < n; ++i) {
+      h = sobol::hash(h + 1u);
+      reversed[i] = sobol::reverse_bits(n % 2 ? uint32_t(i) : h);
+      seed[i] = sobol::hash(h ^ 0x51u);
+    }
+    sobol::sample_reversed_2d(reversed, seed, n, x, y);
+    sobol::sample_reversed_1d(reversed, seed, n, x1);
+    for (int i = 0; i < n; ++i) {
+      const auto u = sobol::sample_reversed<2>(reversed[i], seed[i]);
+      ASSERT_EQ(x[i], u[0]) << "n " << n << " i " << i;
+      ASSERT_EQ(y[i], u[1]) << "n " << n << " i " << i;
+      ASSERT_EQ(x1[i], sobol::sample_reversed<1>(reversed[i], seed[i])[0]) << "n " << n << " i " << i;
+    }
+  }
+}
+
+TEST(PathSampler, NumbersDrawnAheadAreTheSamplersOwn) {
+  constexpr int kN = 150;  // more than one chunk of draw_vertices
+  uint32_t seeds[kN], indices[kN];
+  int vertices[kN];
+  for (int i = 0; i < kN; ++i) {
+    seeds[i] = PathSampler::pixel_seed(uint32_t(i % 13), uint32_t(i / 13), 5);
+    indices[i] = i < 100 ? uint32_t(i) : sobol::hash(uint32_t(i));
+    vertices[i] = i % 23;  // also past the tabulated sets' hashes
+  }
+  Point2 filters[kN];
+  VertexNumbers numbers[kN];
+  PathSampler::draw_filters(seeds, indices, kN, filters);
+  PathSampler::draw_vertices(seeds, indices, vertices, kN, numbers);
+  for (int i = 0; i < kN; ++i) {
+    const PathSampler own(seeds[i], indices[i]);
+    ASSERT_EQ(filters[i].x, own.filter().x) << i;
+    ASSERT_EQ(filters[i].y, own.filter().y) << i;
+    ASSERT_EQ(numbers[i].vertex, vertices[i]);
+    ASSERT_EQ(numbers[i].light.x, own.light(vertices[i]).x) << i;
+    ASSERT_EQ(numbers[i].light.y, own.light(vertices[i]).y) << i;
+    ASSERT_EQ(numbers[i].bsdf.x, own.bsdf(vertices[i]).x) << i;
+    ASSERT_EQ(numbers[i].bsdf.y, own.bsdf(vertices[i]).y) << i;
+    ASSERT_EQ(numbers[i].russian_roulette, own.russian_roulette(vertices[i])) << i;
+    // A sampler given them returns them for that vertex and draws any other itself.
+    const PathSampler ahead(seeds[i], indices[i], &numbers[i]);
+    ASSERT_EQ(ahead.bsdf(vertices[i]).x, numbers[i].bsdf.x);
+    ASSERT_EQ(ahead.bsdf(vertices[i] + 1).x, own.bsdf(vertices[i] + 1).x);
+    ASSERT_EQ(ahead.russian_roulette(vertices[i] + 1), own.russian_roulette(vertices[i] + 1));
   }
 }
 

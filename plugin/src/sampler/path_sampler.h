@@ -14,11 +14,30 @@
 
 namespace bxdf::render {
 
+// The numbers one path vertex draws, drawn ahead for a batch of paths
+// (PathSampler::draw_vertices): its light point, its BSDF sample and its roulette number.
+struct VertexNumbers {
+  int vertex = -1;  // none drawn
+  Point2 light, bsdf;
+  float russian_roulette = 0.0f;
+};
+
 class PathSampler {
  public:
-  // `pixel_seed` from pixel_seed(); `sample_index` counts the pixel's samples from 0.
-  PathSampler(uint32_t pixel_seed, uint32_t sample_index)
-      : seed_(pixel_seed), index_(sample_index), reversed_index_(sobol::reverse_bits(sample_index)) {}
+  // `pixel_seed` from pixel_seed(); `sample_index` counts the pixel's samples from 0. `drawn`,
+  // if given, holds the numbers of one vertex, drawn ahead: the same bits as drawing them here.
+  PathSampler(uint32_t pixel_seed, uint32_t sample_index, const VertexNumbers* drawn = nullptr)
+      : seed_(pixel_seed),
+        index_(sample_index),
+        reversed_index_(sobol::reverse_bits(sample_index)),
+        drawn_(drawn) {}
+
+  // Many samples' draws at once (sobol_burley_batch.h), for i < n: the pixel filter's numbers
+  // of sample (pixel_seed[i], sample_index[i]), and the numbers of its path vertex vertex[i].
+  static void draw_filters(const uint32_t* pixel_seed, const uint32_t* sample_index, int n,
+                           Point2* out);
+  static void draw_vertices(const uint32_t* pixel_seed, const uint32_t* sample_index,
+                            const int* vertex, int n, VertexNumbers* out);
 
   // A pixel's seed: its position and the render seed, hashed.
   static uint32_t pixel_seed(uint32_t x, uint32_t y, uint64_t render_seed) {
@@ -32,9 +51,14 @@ class PathSampler {
   // first coordinate, y its second (Cycles' PRNG_LIGHT). Sobol dimensions 0 and 1 are the only
   // pair that is a (0, m, 2)-net; dimensions 1 and 2, which a third number for the choice
   // would leave the point, are not.
-  Point2 light(int bounce) const { return point2(set(kLight, bounce)); }
-  Point2 bsdf(int bounce) const { return point2(set(kBsdf, bounce)); }
+  Point2 light(int bounce) const {
+    return drawn_ && drawn_->vertex == bounce ? drawn_->light : point2(set(kLight, bounce));
+  }
+  Point2 bsdf(int bounce) const {
+    return drawn_ && drawn_->vertex == bounce ? drawn_->bsdf : point2(set(kBsdf, bounce));
+  }
   float russian_roulette(int bounce) const {
+    if (drawn_ && drawn_->vertex == bounce) return drawn_->russian_roulette;
     return sobol::sample_reversed<1>(reversed_index_, set(kRussianRoulette, bounce))[0];
   }
   // A number of its own for each (pixel, sample): the multiscatter walks' salt (nonzero, but
@@ -52,10 +76,11 @@ class PathSampler {
     return h;
   }();
 
-  uint32_t set(Purpose purpose, int bounce) const {
+  static uint32_t set(uint32_t pixel_seed, Purpose purpose, int bounce) {
     const uint32_t set_number = static_cast<uint32_t>(bounce) * kPurposes + purpose;
-    return seed_ ^ (set_number < kTabulatedSets ? kSetHashes[set_number] : sobol::hash(set_number));
+    return pixel_seed ^ (set_number < kTabulatedSets ? kSetHashes[set_number] : sobol::hash(set_number));
   }
+  uint32_t set(Purpose purpose, int bounce) const { return set(seed_, purpose, bounce); }
   Point2 point2(uint32_t seed) const {
     const std::array<float, 2> u = sobol::sample_reversed<2>(reversed_index_, seed);
     return Point2(u[0], u[1]);
@@ -64,6 +89,7 @@ class PathSampler {
   uint32_t seed_;
   uint32_t index_;
   uint32_t reversed_index_;  // reverse_bits(index_), which every set's draw starts from
+  const VertexNumbers* drawn_;
 };
 
 }  // namespace bxdf::render
