@@ -433,7 +433,10 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   if (bounce == 0 && transparent_bounces == 0) bsdf.use_defensive_sampling();
 
   if (bsdf.has_non_delta()) {
-    const RGB nee = sample_one_light(hit, sp, bsdf, wo, receiver, sampler.light(vertex),
+    // (Without a light to pick, sample_one_light reads no number: none is drawn.)
+    const Point2 u_light =
+        scene_.light_sampler().empty() ? Point2(0.0f, 0.0f) : sampler.light(vertex);
+    const RGB nee = sample_one_light(hit, sp, bsdf, wo, receiver, u_light,
                                      transparent_bounces, stats, &s.shadow);
     if (s.shadow.active) s.shadow.contribution = beta * nee;  // added once the ray is tested
     else L += beta * nee;

@@ -32,14 +32,39 @@ void PathBatch::prefetch_shading(int live) const {
 }
 
 void PathBatch::draw_numbers(int live) {
+  // An escaped path draws nothing more; a path draws its light point only where the scene has
+  // a light to pick, and its roulette number only where it may be ended.
+  int n = 0;
   for (int a = 0; a < live; ++a) {
+    if (!found_[size_t(a)]) {
+      number_slots_[size_t(a)] = -1;
+      continue;
+    }
     const int k = live_[size_t(a)];
-    number_seeds_[size_t(a)] = samples_[size_t(k)].pixel_seed;
-    number_indices_[size_t(a)] = samples_[size_t(k)].index;
-    number_vertices_[size_t(a)] = paths_[size_t(k)].vertex;
+    number_seeds_[size_t(n)] = samples_[size_t(k)].pixel_seed;
+    number_indices_[size_t(n)] = samples_[size_t(k)].index;
+    number_vertices_[size_t(n)] = paths_[size_t(k)].vertex;
+    number_slots_[size_t(a)] = n++;
   }
   PathSampler::draw_vertices(number_seeds_.data(), number_indices_.data(), number_vertices_.data(),
-                             live, numbers_.data());
+                             n, !scene_.light_sampler().empty(), numbers_.data());
+  // The roulette's subset, gathered in place (entry m <= j is read before it is overwritten).
+  int m = 0;
+  for (int a = 0; a < live; ++a) {
+    const int j = number_slots_[size_t(a)];
+    if (j < 0 || !(paths_[size_t(live_[size_t(a)])].continuation < 1.0f)) continue;
+    number_seeds_[size_t(m)] = number_seeds_[size_t(j)];
+    number_indices_[size_t(m)] = number_indices_[size_t(j)];
+    number_vertices_[size_t(m)] = number_vertices_[size_t(j)];
+    roulette_entries_[size_t(m++)] = j;
+  }
+  PathSampler::draw_roulette(number_seeds_.data(), number_indices_.data(), number_vertices_.data(),
+                             m, roulette_numbers_.data());
+  for (int i = 0; i < m; ++i) {
+    VertexNumbers& v = numbers_[size_t(roulette_entries_[size_t(i)])];
+    v.russian_roulette = roulette_numbers_[size_t(i)];
+    v.has_roulette = true;
+  }
 }
 
 int PathBatch::advance_live(int live, PathStats& stats) {

@@ -44,10 +44,12 @@ class PathBatch {
  private:
   // Path k's sampler at live slot a, with the numbers drawn for its vertex.
   PathSampler sampler(int k, int a) const {
+    const int slot = number_slots_[size_t(a)];
     return PathSampler(samples_[size_t(k)].pixel_seed, samples_[size_t(k)].index,
-                       &numbers_[size_t(a)]);
+                       slot < 0 ? nullptr : &numbers_[size_t(slot)]);
   }
-  // Draws every live path's numbers of its next vertex together (PathSampler::draw_vertices).
+  // Draws the numbers of the vertex every live path found, all together
+  // (PathSampler::draw_vertices, draw_roulette).
   void draw_numbers(int live);
   // Starts loading what shading the live paths' hits reads.
   void prefetch_shading(int live) const;
@@ -73,10 +75,13 @@ class PathBatch {
   std::array<uint8_t, kSize> camera_;
   std::array<uint8_t, kSize> found_;
   std::array<Hit, kSize> hits_;
-  // Per live path, the numbers of its vertex, and what they were drawn from.
+  // The numbers of the vertices found (number_slots_: per live path, its entry or -1), what
+  // they were drawn from, and the entries that draw a roulette number.
+  std::array<int, kSize> number_slots_;
   std::array<VertexNumbers, kSize> numbers_;
   std::array<uint32_t, kSize> number_seeds_, number_indices_;
-  std::array<int, kSize> number_vertices_;
+  std::array<int, kSize> number_vertices_, roulette_entries_;
+  std::array<float, kSize> roulette_numbers_;
   // Per live path: its prepared hit, and where its program's registers are (null: it did not
   // run); the registers of every path in one block, the scene's largest program per path.
   std::array<PreparedHit, kSize> prepared_;

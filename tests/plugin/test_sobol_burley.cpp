@@ -268,10 +268,23 @@ TEST(PathSampler, NumbersDrawnAheadAreTheSamplersOwn) {
     vertices[i] = i % 23;  // also past the tabulated sets' hashes
   }
   Point2 filters[kN];
-  VertexNumbers numbers[kN];
+  VertexNumbers numbers[kN], without_light[kN];
+  float roulette[kN];
   PathSampler::draw_filters(seeds, indices, kN, filters);
-  PathSampler::draw_vertices(seeds, indices, vertices, kN, numbers);
+  PathSampler::draw_vertices(seeds, indices, vertices, kN, true, numbers);
+  PathSampler::draw_vertices(seeds, indices, vertices, kN, false, without_light);
+  PathSampler::draw_roulette(seeds, indices, vertices, kN, roulette);
   for (int i = 0; i < kN; ++i) {
+    numbers[i].russian_roulette = roulette[i];
+    numbers[i].has_roulette = true;
+  }
+  for (int i = 0; i < kN; ++i) {
+    // Drawn without the light's or the roulette's numbers, a sampler draws those itself.
+    const PathSampler own_light(seeds[i], indices[i], &without_light[i]);
+    ASSERT_EQ(without_light[i].bsdf.x, numbers[i].bsdf.x);
+    ASSERT_EQ(own_light.light(vertices[i]).y, PathSampler(seeds[i], indices[i]).light(vertices[i]).y);
+    ASSERT_EQ(own_light.russian_roulette(vertices[i]),
+              PathSampler(seeds[i], indices[i]).russian_roulette(vertices[i]));
     const PathSampler own(seeds[i], indices[i]);
     ASSERT_EQ(filters[i].x, own.filter().x) << i;
     ASSERT_EQ(filters[i].y, own.filter().y) << i;

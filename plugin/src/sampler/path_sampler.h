@@ -15,9 +15,11 @@
 namespace bxdf::render {
 
 // The numbers one path vertex draws, drawn ahead for a batch of paths
-// (PathSampler::draw_vertices): its light point, its BSDF sample and its roulette number.
+// (PathSampler::draw_vertices, draw_roulette): its BSDF sample, its light point (where the scene
+// has a light to pick) and its roulette number (where the path may be ended there).
 struct VertexNumbers {
   int vertex = -1;  // none drawn
+  bool has_light = false, has_roulette = false;
   Point2 light, bsdf;
   float russian_roulette = 0.0f;
 };
@@ -33,11 +35,15 @@ class PathSampler {
         drawn_(drawn) {}
 
   // Many samples' draws at once (sobol_burley_batch.h), for i < n: the pixel filter's numbers
-  // of sample (pixel_seed[i], sample_index[i]), and the numbers of its path vertex vertex[i].
+  // of sample (pixel_seed[i], sample_index[i]); the BSDF's (and, if `light`, the light's)
+  // numbers of its path vertex vertex[i]; and that vertex's roulette number, which
+  // draw_roulette adds to out[i] drawn by draw_vertices.
   static void draw_filters(const uint32_t* pixel_seed, const uint32_t* sample_index, int n,
                            Point2* out);
   static void draw_vertices(const uint32_t* pixel_seed, const uint32_t* sample_index,
-                            const int* vertex, int n, VertexNumbers* out);
+                            const int* vertex, int n, bool light, VertexNumbers* out);
+  static void draw_roulette(const uint32_t* pixel_seed, const uint32_t* sample_index,
+                            const int* vertex, int n, float* out);
 
   // A pixel's seed: its position and the render seed, hashed.
   static uint32_t pixel_seed(uint32_t x, uint32_t y, uint64_t render_seed) {
@@ -52,13 +58,14 @@ class PathSampler {
   // pair that is a (0, m, 2)-net; dimensions 1 and 2, which a third number for the choice
   // would leave the point, are not.
   Point2 light(int bounce) const {
-    return drawn_ && drawn_->vertex == bounce ? drawn_->light : point2(set(kLight, bounce));
+    return drawn_ && drawn_->vertex == bounce && drawn_->has_light ? drawn_->light
+                                                                   : point2(set(kLight, bounce));
   }
   Point2 bsdf(int bounce) const {
     return drawn_ && drawn_->vertex == bounce ? drawn_->bsdf : point2(set(kBsdf, bounce));
   }
   float russian_roulette(int bounce) const {
-    if (drawn_ && drawn_->vertex == bounce) return drawn_->russian_roulette;
+    if (drawn_ && drawn_->vertex == bounce && drawn_->has_roulette) return drawn_->russian_roulette;
     return sobol::sample_reversed<1>(reversed_index_, set(kRussianRoulette, bounce))[0];
   }
   // A number of its own for each (pixel, sample): the multiscatter walks' salt (nonzero, but
