@@ -6,62 +6,48 @@
 
 namespace bxdf::render {
 
-namespace {
-// Draws are made this many at a time, from arrays on the stack.
-constexpr int kChunk = 64;
-}  // namespace
-
-void PathSampler::draw_filters(const uint32_t* pixel_seed, const uint32_t* sample_index, int n,
-                               Point2* out) {
+template <class Store>
+void PathSampler::draw_set(const uint32_t* pixel_seed, const uint32_t* sample_index,
+                           const int* vertex, int n, Purpose purpose, int dimensions,
+                           Store&& store) {
+  constexpr int kChunk = 64;  // draws at a time, from arrays on the stack
   uint32_t reversed[kChunk], seed[kChunk];
-  float x[kChunk], y[kChunk];
+  float x[kChunk], y[kChunk] = {};  // (y stays 0 for one coordinate)
   for (int first = 0; first < n; first += kChunk) {
     const int m = std::min(kChunk, n - first);
     for (int i = 0; i < m; ++i) {
       reversed[i] = sobol::reverse_bits(sample_index[first + i]);
-      seed[i] = set(pixel_seed[first + i], kFilter, 0);
+      seed[i] = set(pixel_seed[first + i], purpose, vertex ? vertex[first + i] : 0);
     }
-    sobol::sample_reversed_2d(reversed, seed, m, x, y);
-    for (int i = 0; i < m; ++i) out[first + i] = Point2(x[i], y[i]);
+    if (dimensions == 2) sobol::sample_reversed_2d(reversed, seed, m, x, y);
+    else sobol::sample_reversed_1d(reversed, seed, m, x);
+    for (int i = 0; i < m; ++i) store(first + i, x[i], y[i]);
   }
+}
+
+void PathSampler::draw_filters(const uint32_t* pixel_seed, const uint32_t* sample_index, int n,
+                               Point2* out) {
+  draw_set(pixel_seed, sample_index, nullptr, n, kFilter, 2,
+           [out](int i, float x, float y) { out[i] = Point2(x, y); });
 }
 
 void PathSampler::draw_vertices(const uint32_t* pixel_seed, const uint32_t* sample_index,
                                 const int* vertex, int n, bool light, VertexNumbers* out) {
-  uint32_t reversed[kChunk], seed[kChunk];
-  float x[kChunk], y[kChunk];
-  for (int first = 0; first < n; first += kChunk) {
-    const int m = std::min(kChunk, n - first);
-    VertexNumbers* o = out + first;
-    for (int i = 0; i < m; ++i) reversed[i] = sobol::reverse_bits(sample_index[first + i]);
-    const auto draw = [&](Purpose purpose) {
-      for (int i = 0; i < m; ++i) seed[i] = set(pixel_seed[first + i], purpose, vertex[first + i]);
-      sobol::sample_reversed_2d(reversed, seed, m, x, y);
-    };
-    draw(kBsdf);
-    for (int i = 0; i < m; ++i) {
-      o[i].vertex = vertex[first + i];
-      o[i].bsdf = Point2(x[i], y[i]);
-      o[i].has_light = light;
-      o[i].has_roulette = false;
-    }
-    if (!light) continue;
-    draw(kLight);
-    for (int i = 0; i < m; ++i) o[i].light = Point2(x[i], y[i]);
-  }
+  draw_set(pixel_seed, sample_index, vertex, n, kBsdf, 2, [&](int i, float x, float y) {
+    out[i].vertex = vertex[i];
+    out[i].bsdf = Point2(x, y);
+    out[i].has_light = light;
+    out[i].has_roulette = false;
+  });
+  if (light)
+    draw_set(pixel_seed, sample_index, vertex, n, kLight, 2,
+             [out](int i, float x, float y) { out[i].light = Point2(x, y); });
 }
 
 void PathSampler::draw_roulette(const uint32_t* pixel_seed, const uint32_t* sample_index,
                                 const int* vertex, int n, float* out) {
-  uint32_t reversed[kChunk], seed[kChunk];
-  for (int first = 0; first < n; first += kChunk) {
-    const int m = std::min(kChunk, n - first);
-    for (int i = 0; i < m; ++i) {
-      reversed[i] = sobol::reverse_bits(sample_index[first + i]);
-      seed[i] = set(pixel_seed[first + i], kRussianRoulette, vertex[first + i]);
-    }
-    sobol::sample_reversed_1d(reversed, seed, m, out + first);
-  }
+  draw_set(pixel_seed, sample_index, vertex, n, kRussianRoulette, 1,
+           [out](int i, float x, float) { out[i] = x; });
 }
 
 }  // namespace bxdf::render

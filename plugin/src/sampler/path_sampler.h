@@ -83,6 +83,11 @@ class PathSampler {
     return h;
   }();
 
+  // Set `purpose` of vertex vertex[i] (no vertex: 0) of sample (pixel_seed[i], sample_index[i])
+  // for i < n, its first `dimensions` (1 or 2) coordinates handed to store(i, x, y).
+  template <class Store>
+  static void draw_set(const uint32_t* pixel_seed, const uint32_t* sample_index,
+                       const int* vertex, int n, Purpose purpose, int dimensions, Store&& store);
   static uint32_t set(uint32_t pixel_seed, Purpose purpose, int bounce) {
     const uint32_t set_number = static_cast<uint32_t>(bounce) * kPurposes + purpose;
     return pixel_seed ^ (set_number < kTabulatedSets ? kSetHashes[set_number] : sobol::hash(set_number));
