@@ -3,10 +3,11 @@
 // between a vertex's intersections and its shading passes over the batch start loading what
 // shading reads (the triangles' indices, then their vertices, then the texels a node material
 // looks up at the hit's UVs), so that the batch's memory waits overlap instead of following one
-// another. Every path is advanced by the path tracer's own step (PathTracer::
-// advance_deferring_shadow), and the vertex's shadow rays then go to Embree together
-// (Scene::occluded_stream) before any path's next vertex: its result is what tracing it alone
-// gives.
+// another. The vertex's Sobol-Burley numbers are drawn for all its paths at once (eight at a
+// time where the CPU has AVX2: sampler/sobol_burley_batch.h). Every path is advanced by the path
+// tracer's own step (PathTracer::advance_deferring_shadow), and the vertex's shadow rays then go
+// to Embree together (Scene::occluded_stream) before any path's next vertex: its result is what
+// tracing it alone gives.
 #pragma once
 
 #include <array>
