@@ -70,10 +70,12 @@ PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
 
 RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf,
                                  const Vec3& wo, LightReceiver& receiver,
-                                 Point2 u, int transparent_bounces,
-                                 PathStats& stats, PendingShadow* deferred) const {
+                                 const PathSampler& path_sampler, int vertex,
+                                 int transparent_bounces, PathStats& stats,
+                                 PendingShadow* deferred) const {
   const LightSampler& sampler = scene_.light_sampler();
   if (sampler.empty()) return RGB(0.0f);
+  const Point2 u = path_sampler.light(vertex);
   const auto& lights = scene_.lights();
   float select = 0.0f;
   float u1 = 0.0f;
@@ -433,10 +435,7 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   if (bounce == 0 && transparent_bounces == 0) bsdf.use_defensive_sampling();
 
   if (bsdf.has_non_delta()) {
-    // (Without a light to pick, sample_one_light reads no number: none is drawn.)
-    const Point2 u_light =
-        scene_.light_sampler().empty() ? Point2(0.0f, 0.0f) : sampler.light(vertex);
-    const RGB nee = sample_one_light(hit, sp, bsdf, wo, receiver, u_light,
+    const RGB nee = sample_one_light(hit, sp, bsdf, wo, receiver, sampler, vertex,
                                      transparent_bounces, stats, &s.shadow);
     if (s.shadow.active) s.shadow.contribution = beta * nee;  // added once the ray is tested
     else L += beta * nee;

@@ -163,11 +163,12 @@ class PathTracer {
   // `receiver`: the hit's point and viewer_side_normal (PreparedHit::viewer_n, computed once
   // by prepare), for which the light is picked (and which keeps the light distribution's
   // normalisation there). With `deferred`, a plain-occlusion shadow ray is not tested but left
-  // in *deferred (active), and the radiance returned is what an unblocked ray gives. `u`
-  // (PathSampler::light): u.x picks the light and, remapped within its interval, is the light
-  // point's first coordinate.
+  // in *deferred (active), and the radiance returned is what an unblocked ray gives. The
+  // light's numbers are `path_sampler`'s of `vertex` (PathSampler::light), drawn only where the
+  // scene has a light to pick: x picks the light and, remapped within its interval, is the
+  // light point's first coordinate.
   RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
-                       LightReceiver& receiver, Point2 u,
+                       LightReceiver& receiver, const PathSampler& path_sampler, int vertex,
                        int transparent_bounces, PathStats& stats,
                        PendingShadow* deferred = nullptr) const;
   // A direction towards the world (light sampler entry lights().size()), drawn from (u1, u2).
