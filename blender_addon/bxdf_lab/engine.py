@@ -36,7 +36,8 @@ PHASES = ("export", "convert", "bvh", "render", "hand_back", "other", "total")
 # Editor; without a GPU (software OpenGL, as under Xvfb) those redraws take the render's own
 # cores. With the status every 50 ms and a partial result after each of the 8 passes, a
 # 64-sample F12 render of cycles_glass_room at 256² took 6.2-7.0 s in a window against 2.4-3.0 s
-# in `blender -b`; with these intervals, 3.2-3.3 s (Cycles: 4.4-4.6 s).
+# in `blender -b`; with these intervals, 3.2-3.5 s (Cycles: 4.4-5.2 s), as measured in
+# docs/performance-history.md (twenty-first session).
 STATUS_INTERVAL = 0.5
 PARTIAL_RESULT_INTERVAL = 2.0  # the first one too, after as long
 
