@@ -7,11 +7,29 @@ import os
 import shutil
 import subprocess
 import sys
+import warnings
 
 import bpy
 import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def _read(path):
+    return open(path).read() if os.path.exists(path) else ""
+
+
+def _tail(text, size=3000):
+    if isinstance(text, bytes):
+        text = text.decode(errors="replace")
+    return (text or "")[-size:]
+
+
+def _steps(text):
+    """The session's step lines (windowed_session.mark) out of Blender's and POV-Ray's output."""
+    if isinstance(text, bytes):
+        text = text.decode(errors="replace")
+    return "\n".join(line for line in (text or "").splitlines() if line.startswith("[windowed_session"))
 
 
 @pytest.fixture(scope="module")
@@ -24,13 +42,28 @@ def windowed(tmp_path_factory):
     out = str(folder / "result.json")
     env = dict(os.environ, BLENDER_USER_CONFIG=str(folder / "config"),
                BXDF_PYTHONPATH=os.pathsep.join(p for p in sys.path if os.path.isdir(os.path.join(p, "bxdf"))))
-    run = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", "blender", "--factory-startup",
-                          blend, "--python", os.path.join(HERE, "windowed_session.py"), "--", "--out", out],
-                         env=env, capture_output=True, text=True, timeout=900)
-    assert os.path.exists(out), run.stdout[-3000:] + run.stderr[-3000:]
+    command = ["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", "blender", "--factory-startup", blend,
+               "--python", os.path.join(HERE, "windowed_session.py"), "--", "--out", out]
+    try:
+        run = subprocess.run(command, env=env, capture_output=True, text=True, timeout=600)
+    except subprocess.TimeoutExpired as expired:  # the session's own watchdog did not fire either
+        pytest.fail("the windowed session did not end in 600 s:\n" + _steps(expired.stdout) + "\n"
+                    + _tail(expired.stdout) + _tail(expired.stderr))
+    stacks = _read(out + ".stacks")
+    assert not stacks, ("the windowed session hung; its last steps and every Python thread's stack:\n"
+                        + _steps(run.stdout) + "\n" + stacks)
+    assert os.path.exists(out), _tail(run.stdout) + _tail(run.stderr)
     with open(out) as f:
         result = json.load(f)
     assert result["errors"] == [], result["errors"]
+    # Nothing of ours is left running when the session quits: no render job, no viewport render.
+    assert result["at_quit"] == {"jobs": [], "viewport_renders": 0}, result["at_quit"]
+    quit_stacks = _read(out + ".quit_stacks")
+    if quit_stacks:
+        # Blender's own quit did not end (seen once in CI, on 6 December 2026, after every check
+        # had passed; cause not found): the checks stand, and the stacks are shown.
+        warnings.warn("Blender did not quit within the session's limit after the checks; every "
+                      "Python thread's stack:\n" + quit_stacks)
     return result
 
 

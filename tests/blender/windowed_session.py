@@ -11,6 +11,7 @@ seconds to wait before the next.
 """
 
 import argparse
+import faulthandler
 import json
 import os
 import sys
@@ -35,7 +36,20 @@ parser.add_argument("--models", nargs="*", default=None)
 args = parser.parse_args(sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else [])
 
 TIMEOUT = 120.0
+# A whole session takes 85-105 s. Past HANG_SECONDS something is stuck: every Python thread's
+# stack goes to OUT.stacks and Blender exits, so that the test reports where instead of timing out.
+# Blender's own quit (jobs, windows, Python) gets QUIT_SECONDS, its stacks OUT.quit_stacks.
+HANG_SECONDS = 420.0
+QUIT_SECONDS = 60.0
+stacks, quit_stacks = open(args.out + ".stacks", "w"), open(args.out + ".quit_stacks", "w")
+JOB_KINDS = ("RENDER", "RENDER_PREVIEW", "OBJECT_BAKE", "COMPOSITE", "SHADER_COMPILATION")
 result = {"previews": {}, "viewport": {}, "errors": []}
+session_started = time.time()
+
+
+def mark(step):
+    """One line per step on stdout, so that a stuck session's output shows the last step reached."""
+    print(f"[windowed_session {time.time() - session_started:6.1f} s] {step}", flush=True)
 
 
 def area(kind):
@@ -93,6 +107,7 @@ def previews(material):
     for model in args.models or list(bxdf.models()):
         yield from quiet()
         first = len(preview_renders)
+        mark(f"preview of {model}")
         api.assign(material, model)  # Blender re-renders the preview
         yield from wait_for(lambda: any(not r.cancelled for _, r, _ in preview_renders[first:]),
                             f"the preview of {model}")
@@ -139,6 +154,7 @@ def viewport_steps():
     if args.screenshots:
         showcase()
     view = area("VIEW_3D")
+    mark("viewport: Rendered mode")
     with bpy.context.temp_override(window=bpy.context.window, area=view, scene=bpy.context.scene):
         view.spaces.active.shading.type = "RENDERED"
     yield from wait_for(lambda: viewport.sessions() and viewport.sessions()[0].job is not None,
@@ -151,6 +167,7 @@ def viewport_steps():
                                    "shape": list(first.image.shape),
                                    "samples": first.stats.get("samples_per_pixel", 0)}
     screenshot("VIEW_3D", "viewport_rendered.png")
+    mark("viewport: an edit")
     bpy.data.objects["Cube"].location.x += 0.5  # an edit: Blender calls view_update
     yield from wait_for(lambda: session.job is not first, "the viewport render to restart")
     second = session.job
@@ -175,6 +192,7 @@ def compare_steps():
     with bpy.context.temp_override(window=bpy.context.window, area=area("IMAGE_EDITOR")):
         # The README's pictures at a readable size; the test at a quick one.
         size, samples = (320, 32) if args.screenshots else (48, 4)
+        mark("Compare Renders")
         started = bpy.ops.bxdf_lab.compare_renders("EXEC_DEFAULT", directory=folder, size=size, samples=samples)
     result["compare"] = {"started": list(started), "folder": folder}
 
@@ -188,6 +206,7 @@ def compare_steps():
         yield from wait_for(lambda: compare.last_result.get("folder") == folder, "Compare Renders")
     finally:
         bpy.app.handlers.render_complete.remove(slow_handler)
+    mark("Compare Renders finished")
     yield 0.5
     shown = area("IMAGE_EDITOR").spaces.active.image
     result["compare"].update(
@@ -223,9 +242,13 @@ def steps():
         view.spaces.active.shading.type = "SOLID"  # stops the viewport render before quitting
     yield 0.5
     yield from compare_steps()
+    # The settings Compare Renders restored start new material previews: they end on their own.
+    yield from wait_for(lambda: not any(bpy.app.is_job_running(kind) for kind in JOB_KINDS),
+                        "every render job to end")
 
 
 def run():
+    faulthandler.dump_traceback_later(HANG_SECONDS, exit=True, file=stacks)
     gen = steps()
 
     def tick():
@@ -235,15 +258,29 @@ def run():
             pass
         except Exception:
             result["errors"].append(traceback.format_exc())
-        with open(args.out, "w") as f:
-            json.dump(result, f, indent=1)
         bpy.app.timers.register(quit_when_idle, first_interval=0.2)
         return None
 
+    refusals = 0
+
     def quit_when_idle():
+        nonlocal refusals
+        if refusals == 0:  # the first attempt: what is still running, then the result
+            from bxdf_lab import viewport
+            result["at_quit"] = {"jobs": [kind for kind in JOB_KINDS if bpy.app.is_job_running(kind)],
+                                 "viewport_renders": sum(s.job is not None and not s.job.done
+                                                         for s in viewport.sessions())}
+            with open(args.out, "w") as f:
+                json.dump(result, f, indent=1)
+            mark(f"result written; quitting with {result['at_quit']} running")
+            faulthandler.cancel_dump_traceback_later()
+            faulthandler.dump_traceback_later(QUIT_SECONDS, exit=True, file=quit_stacks)
         try:
             bpy.ops.wm.quit_blender()
-        except RuntimeError:  # a preview job is still rendering: try again
+        except RuntimeError as exc:  # a preview job is still rendering: try again
+            if refusals % 50 == 0:
+                mark(f"quit refused ({exc}); trying every 0.2 s")
+            refusals += 1
             return 0.2
         return None
 
