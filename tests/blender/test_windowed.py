@@ -19,17 +19,18 @@ def _read(path):
     return open(path).read() if os.path.exists(path) else ""
 
 
-def _tail(text, size=3000):
-    if isinstance(text, bytes):
-        text = text.decode(errors="replace")
-    return (text or "")[-size:]
+def _text(output):
+    """A process's output as text (TimeoutExpired holds bytes even for text=True, or None)."""
+    return output.decode(errors="replace") if isinstance(output, bytes) else (output or "")
 
 
-def _steps(text):
+def _tail(output, size=3000):
+    return _text(output)[-size:]
+
+
+def _steps(output):
     """The session's step lines (windowed_session.mark) out of Blender's and POV-Ray's output."""
-    if isinstance(text, bytes):
-        text = text.decode(errors="replace")
-    return "\n".join(line for line in (text or "").splitlines() if line.startswith("[windowed_session"))
+    return "\n".join(line for line in _text(output).splitlines() if line.startswith("[windowed_session"))
 
 
 @pytest.fixture(scope="module")
