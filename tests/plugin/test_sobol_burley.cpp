@@ -280,12 +280,13 @@ TEST(PathSampler, NumbersDrawnAheadAreTheSamplersOwn) {
   }
   for (int i = 0; i < kN; ++i) {
     // Drawn without the light's or the roulette's numbers, a sampler draws those itself.
-    const PathSampler own_light(seeds[i], indices[i], &without_light[i]);
-    ASSERT_EQ(without_light[i].bsdf.x, numbers[i].bsdf.x);
-    ASSERT_EQ(own_light.light(vertices[i]).y, PathSampler(seeds[i], indices[i]).light(vertices[i]).y);
-    ASSERT_EQ(own_light.russian_roulette(vertices[i]),
-              PathSampler(seeds[i], indices[i]).russian_roulette(vertices[i]));
     const PathSampler own(seeds[i], indices[i]);
+    const PathSampler own_light(seeds[i], indices[i], &without_light[i]);
+    ASSERT_EQ(without_light[i].bsdf.x, numbers[i].bsdf.x) << i;
+    ASSERT_EQ(without_light[i].bsdf.y, numbers[i].bsdf.y) << i;
+    ASSERT_EQ(own_light.light(vertices[i]).x, own.light(vertices[i]).x) << i;
+    ASSERT_EQ(own_light.light(vertices[i]).y, own.light(vertices[i]).y) << i;
+    ASSERT_EQ(own_light.russian_roulette(vertices[i]), own.russian_roulette(vertices[i])) << i;
     ASSERT_EQ(filters[i].x, own.filter().x) << i;
     ASSERT_EQ(filters[i].y, own.filter().y) << i;
     ASSERT_EQ(numbers[i].vertex, vertices[i]);
@@ -297,6 +298,8 @@ TEST(PathSampler, NumbersDrawnAheadAreTheSamplersOwn) {
     // A sampler given them returns them for that vertex and draws any other itself.
     const PathSampler ahead(seeds[i], indices[i], &numbers[i]);
     ASSERT_EQ(ahead.bsdf(vertices[i]).x, numbers[i].bsdf.x);
+    ASSERT_EQ(ahead.light(vertices[i]).y, numbers[i].light.y);
+    ASSERT_EQ(ahead.russian_roulette(vertices[i]), numbers[i].russian_roulette);
     ASSERT_EQ(ahead.bsdf(vertices[i] + 1).x, own.bsdf(vertices[i] + 1).x);
     ASSERT_EQ(ahead.russian_roulette(vertices[i] + 1), own.russian_roulette(vertices[i] + 1));
   }
