@@ -17,7 +17,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def _read(path):
-    return open(path).read() if os.path.exists(path) else ""
+    if not os.path.exists(path):
+        return ""
+    with open(path) as f:
+        return f.read()
 
 
 def _text(output):
