@@ -273,12 +273,31 @@ void PathTracer::prepare(const PathState& s, const PathSampler& sampler, const H
     prepared->ctx = ShadingContext{&scene_, &hit, sp.p, sp.ns, sp.ng, wo, flipped, &sp};
 }
 
+WalkSlots WalkSlots::of_this_thread() {
+  return {microfacet::MultiscatterWalkSalt::thread_slot(),
+          microfacet::MultiscatterWalkNumbers::thread_slot()};
+}
+
+namespace {
+
+// Cycles' walk numbers at the path's next vertex: its seed grows by 16 (PRNG_BOUNCE_NUM) with
+// every bounce, a transparent one too (walk_numbers.h).
+microfacet::WalkNumbers vertex_walk_numbers(PathState& s, const PathSampler& sampler) {
+  const uint32_t bounces = static_cast<uint32_t>(s.bounce + s.transparent_bounces);
+  return microfacet::WalkNumbers(sampler.walk_seed() + 16u * bounces, &s.walk_anchor);
+}
+
+}  // namespace
+
 void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
                          const Hit* found_hit) const {
   // Multiscatter GGX evaluates a walk estimate seeded by the directions; salted per sample,
   // its error averages away over a pixel's samples instead of staying fixed where they share
   // the directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does.
   const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
+  // Its sampling walks draw Cycles' numbers for the vertex (walk_numbers.h).
+  microfacet::WalkNumbers numbers = vertex_walk_numbers(s, sampler);
+  const microfacet::MultiscatterWalkNumbers walk_numbers(&numbers);
   if (!found_hit) return step(s, sampler, stats, nullptr, nullptr, nullptr);
   PreparedHit prepared;
   prepare(s, sampler, *found_hit, &prepared);
@@ -296,6 +315,8 @@ void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& st
                          const Hit& hit, const PreparedHit& prepared,
                          const Vec3* registers) const {
   const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
+  microfacet::WalkNumbers numbers = vertex_walk_numbers(s, sampler);
+  const microfacet::MultiscatterWalkNumbers walk_numbers(&numbers);
   step(s, sampler, stats, &hit, &prepared, registers);
   test_shadow(s);
 }
@@ -304,14 +325,21 @@ void PathTracer::advance_deferring_shadow(PathState& s, const PathSampler& sampl
                                           PathStats& stats, const Hit* hit,
                                           const PreparedHit* prepared,
                                           const Vec3* registers,
-                                          uint64_t* walk_salt_slot) const {
-  // Restored however step() leaves, so that no later evaluation on this thread sees the salt.
-  struct RestoreSalt {
-    uint64_t* slot;
-    uint64_t outer;
-    ~RestoreSalt() { *slot = outer; }
-  } restore{walk_salt_slot, *walk_salt_slot};
-  *walk_salt_slot = sampler.walk_salt();
+                                          const WalkSlots& walk_slots) const {
+  // Restored however step() leaves, so that no later evaluation on this thread sees the salt
+  // or the numbers.
+  struct Restore {
+    const WalkSlots& slots;
+    uint64_t salt;
+    microfacet::WalkNumbers* numbers;
+    ~Restore() {
+      *slots.salt = salt;
+      *slots.numbers = numbers;
+    }
+  } restore{walk_slots, *walk_slots.salt, *walk_slots.numbers};
+  microfacet::WalkNumbers numbers = vertex_walk_numbers(s, sampler);
+  *walk_slots.salt = sampler.walk_salt();
+  *walk_slots.numbers = &numbers;
   step(s, sampler, stats, hit, prepared, registers);  // an escaped path samples no light
 }
 

@@ -101,7 +101,7 @@ int PathBatch::advance_live(int live, PathStats& stats) {
     const bool found = found_[size_t(a)] != 0;
     tracer_.advance_deferring_shadow(path, sampler(k, a), stats, found ? &hits_[size_t(a)] : nullptr,
                                      found ? &prepared_[size_t(a)] : nullptr, registers_[size_t(a)],
-                                     walk_salt_slot_);
+                                     walk_slots_);
     if (path.shadow.active) {
       shadow_origins_[size_t(shadowed)] = path.shadow.origin;
       shadow_dirs_[size_t(shadowed)] = path.shadow.dir;
@@ -119,7 +119,7 @@ int PathBatch::advance_live(int live, PathStats& stats) {
 }
 
 void PathBatch::trace(PathStats& stats) {
-  walk_salt_slot_ = microfacet::MultiscatterWalkSalt::thread_slot();  // this thread's
+  walk_slots_ = WalkSlots::of_this_thread();
   for (int k = 0; k < count_; k += Scene::kCameraPacket)
     scene_.intersect_camera_rays(&camera_rays_[size_t(k)], std::min(Scene::kCameraPacket, count_ - k),
                                  &camera_hits_[size_t(k)]);

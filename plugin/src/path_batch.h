@@ -62,8 +62,8 @@ class PathBatch {
 
   const Scene& scene_;
   const PathTracer& tracer_;
-  // The tracing thread's multiscatter walk salt, looked up once per trace().
-  uint64_t* walk_salt_slot_ = nullptr;
+  // The tracing thread's multiscatter walk state, looked up once per trace().
+  WalkSlots walk_slots_;
   int count_ = 0;
   std::array<Sample, kSize> samples_;
   std::array<Ray, kSize> camera_rays_;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bxdf/microfacet/multiscatter_ggx.h"
+#include "bxdf/microfacet/walk_numbers.h"
 #include "bxdf/rng.h"
 #include "bxdf/sampling.h"
 #include "incomplete_gamma.h"
@@ -321,8 +322,9 @@ TEST(MultiscatterGGX, EvaluationWalkAgreesWithSamplingWalkWhereCyclesDoesNotSwap
 
 // sample_walk is Cycles' sampling walk with its first facet stratified by u: binned by side and
 // cos θi, its throughput-weighted exits match those of walk_sample (every draw from the
-// generator, as Cycles' mf_sample) within 5 standard errors per bin, and it is a deterministic
-// function of (wo, u) outside a salt scope and another walk inside one.
+// generator, as Cycles' mf_sample) within 5 standard errors per bin, outside a scope and inside
+// a MultiscatterWalkNumbers scope (a path's first walk: Cycles' LCG, the facet u), and it is a
+// deterministic function of (wo, u) outside a salt scope and another walk inside one.
 TEST(MultiscatterGGX, SampleWalkIsTheSamplingWalk) {
   const MultiscatterGGXReflection refl(
       reflection_setup(0.5f, 0.3f, MultiscatterFresnel::kInterpolated));
@@ -330,7 +332,7 @@ TEST(MultiscatterGGX, SampleWalkIsTheSamplingWalk) {
   constexpr int kN = 100000, kBins = 8;
   for (int idx = 0; idx < 2; ++idx) {
     for (const Vec3& wo : {dir(30, 20), dir(75, 200), dir(130, 70)}) {
-      double sum[2][2 * kBins] = {}, sum2[2][2 * kBins] = {};
+      double sum[3][2 * kBins] = {}, sum2[3][2 * kBins] = {};
       PCG32 rng(31 + idx), walk_rng(41 + idx);
       int refused = 0;
       for (int i = 0; i < kN; ++i) {
@@ -355,6 +357,16 @@ TEST(MultiscatterGGX, SampleWalkIsTheSamplingWalk) {
           sum[1][bin(wi)] += t.g;
           sum2[1][bin(wi)] += t.g * t.g;
         }
+        {
+          WalkAnchor anchor;
+          WalkNumbers numbers(static_cast<uint32_t>(i) * 0xb4bc3953u + 17u, &anchor);
+          const MultiscatterWalkNumbers scope(&numbers);
+          const WalkSample n = idx == 0 ? refl.sample_walk(wo, u) : glass.sample_walk(wo, u);
+          if (n.ok) {
+            sum[2][bin(n.wi)] += n.weight.g;
+            sum2[2][bin(n.wi)] += n.weight.g * n.weight.g;
+          }
+        }
         if (i < 100) {  // deterministic in (wo, u); a salt gives another walk
           const WalkSample again = idx == 0 ? refl.sample_walk(wo, u) : glass.sample_walk(wo, u);
           EXPECT_TRUE(again.wi == s.wi && again.weight == s.weight);
@@ -362,13 +374,16 @@ TEST(MultiscatterGGX, SampleWalkIsTheSamplingWalk) {
       }
       EXPECT_LT(refused, kN / 100);
       for (int b = 0; b < 2 * kBins; ++b) {
-        double var = 0.0;
-        for (int k = 0; k < 2; ++k) {
-          const double mean = sum[k][b] / kN;
-          var += (sum2[k][b] / kN - mean * mean) / kN;
+        for (int k : {0, 2}) {
+          double var = 0.0;
+          for (int j : {k, 1}) {
+            const double mean = sum[j][b] / kN;
+            var += (sum2[j][b] / kN - mean * mean) / kN;
+          }
+          EXPECT_NEAR(sum[k][b] / kN, sum[1][b] / kN, 5.0 * std::sqrt(var) + 1e-4)
+              << (idx == 0 ? "reflection" : "glass") << (k == 2 ? " in a scope" : "")
+              << " wo.z " << wo.z << " bin " << b;
         }
-        EXPECT_NEAR(sum[0][b] / kN, sum[1][b] / kN, 5.0 * std::sqrt(var) + 1e-4)
-            << (idx == 0 ? "reflection" : "glass") << " wo.z " << wo.z << " bin " << b;
       }
     }
   }

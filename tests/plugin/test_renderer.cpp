@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "bxdf/microfacet/multiscatter_ggx.h"
+#include "bxdf/microfacet/walk_numbers.h"
 #include "bxdf/registry.h"
 #include "bxdf/render/renderer.h"
 #include "bxdf/render/shapes.h"
@@ -86,9 +87,10 @@ TEST(Renderer, ImageDoesNotDependOnThreadCount) {
   EXPECT_GT(sum, 0.0);
 }
 
-// Multiscatter GGX walks are salted per camera sample, through each render thread's salt slot:
-// the image is the same bits at any thread count, and the thread that rendered is left with no
-// salt (an evaluation after the render is the unsalted f again).
+// Multiscatter GGX walks are salted per camera sample and draw each vertex's walk numbers,
+// through each render thread's slots: the image is the same bits at any thread count, and the
+// thread that rendered is left with neither (an evaluation after the render is the unsalted f
+// again).
 TEST(Renderer, MultiscatterWalksAreSaltedPerSampleAndTheSaltIsRestored) {
   Scene scene;
   ParamSet multiscatter;
@@ -106,11 +108,13 @@ TEST(Renderer, MultiscatterWalksAreSaltedPerSampleAndTheSaltIsRestored) {
   s.threads = 1;
   const std::vector<float> one = render_scene(scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s).rgba();
   EXPECT_EQ(microfacet::MultiscatterWalkSalt::current(), 0u);
+  EXPECT_EQ(microfacet::MultiscatterWalkNumbers::current(), nullptr);
   EXPECT_EQ(glossy->f(wo, wi).r, unsalted.r);
   s.threads = 2;
   const std::vector<float> two = render_scene(scene, camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0)), s).rgba();
   EXPECT_EQ(one, two);
   EXPECT_EQ(microfacet::MultiscatterWalkSalt::current(), 0u);
+  EXPECT_EQ(microfacet::MultiscatterWalkNumbers::current(), nullptr);
   double sum = 0.0;
   for (float v : one) sum += v;
   EXPECT_GT(sum, 0.0);

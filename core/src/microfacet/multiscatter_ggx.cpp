@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "bxdf/microfacet/walk_numbers.h"
 #include "bxdf/sampling.h"
 
 namespace bxdf {
@@ -208,8 +209,8 @@ constexpr int kMaxOrder = 10;
 // The body of Cycles' mf_eval after its swap: wi (Cycles' incoming = the walk's start, z > 0),
 // wo (the direction scattered to). Returns f·|cos θ(wo)| of the pair as Cycles computes it
 // before the swap rescaling.
-template <bool kGlass>
-RGB walk_eval(const Walk& p, const Vec3& wi, const Vec3& wo, bool wo_outside, PCG32& rng) {
+template <bool kGlass, class Rng>
+RGB walk_eval(const Walk& p, const Vec3& wi, const Vec3& wo, bool wo_outside, Rng& rng) {
   if (wi.z < 1e-5f || (wo.z < 1e-5f && wo_outside) || (wo.z > -1e-5f && !wo_outside))
     return RGB(0.0f);
   float lambda_r = mf_lambda(-wi, p.ax, p.ay);
@@ -292,36 +293,58 @@ RGB walk_eval(const Walk& p, const Vec3& wi, const Vec3& wo, bool wo_outside, PC
   return eval;
 }
 
-// Cycles' mf_sample: returns the throughput f cos/p and the exit direction. `first_facet`,
-// when given, replaces the first visible-normal draw (vndf_rand_x, vndf_rand_y).
-template <bool kGlass>
-RGB walk_sample_impl(const Walk& p, const Vec3& wi, PCG32& rng, Vec3* wo,
-                     const Point2* first_facet = nullptr) {
+// The numbers of a sampling walk outside a MultiscatterWalkNumbers scope: a seeded generator,
+// and the caller's first facet where it gives one (else the generator's two numbers).
+struct SeededWalkNumbers {
+  PCG32& rng;
+  const Point2* facet;
+  float uniform() { return rng.uniform(); }
+  Point2 first_facet() {
+    if (facet != nullptr) return *facet;
+    const float y = rng.uniform();
+    return Point2(rng.uniform(), y);
+  }
+};
+
+// The numbers of a sampling walk inside a scope: the path vertex's WalkNumbers, whose first
+// facet is u at the path's first sampling walk (walk_numbers.h).
+struct VertexWalkNumbers {
+  WalkNumbers& numbers;
+  Point2 u;
+  float uniform() { return numbers.uniform(); }
+  Point2 first_facet() { return numbers.first_facet(u); }
+};
+
+// Cycles' mf_sample: returns the throughput f cos/p and the exit direction, drawing from
+// `numbers` (SeededWalkNumbers or VertexWalkNumbers) in Cycles' order.
+template <bool kGlass, class Numbers>
+RGB walk_sample_impl(const Walk& p, const Vec3& wi, Numbers&& numbers, Vec3* wo) {
   RGB throughput(1.0f);
   Vec3 wr = -wi;
   float lambda_r = mf_lambda(wr, p.ax, p.ay);
   float hr = 1.0f, c1_r = 1.0f, g1_r = 0.0f;
   bool outside = true;
   for (int order = 0; order < kMaxOrder; ++order) {
-    const float height_rand = rng.uniform();
+    const float height_rand = numbers.uniform();
     if (!mf_sample_height(wr, &hr, &c1_r, &g1_r, &lambda_r, height_rand)) {
       *wo = outside ? wr : -wr;
       return throughput;
     }
     float vndf_rand_y, vndf_rand_x;
-    if (order == 0 && first_facet != nullptr) {
-      vndf_rand_x = first_facet->x;
-      vndf_rand_y = first_facet->y;
+    if (order == 0) {
+      const Point2 facet = numbers.first_facet();
+      vndf_rand_x = facet.x;
+      vndf_rand_y = facet.y;
     } else {
-      vndf_rand_y = rng.uniform();
-      vndf_rand_x = rng.uniform();
+      vndf_rand_y = numbers.uniform();
+      vndf_rand_x = numbers.uniform();
     }
     const Vec3 wm = sample_vndf(-wr, p.ax, p.ay, vndf_rand_x, vndf_rand_y);
     if (!p.use_fresnel && order > 0) throughput *= p.color;
     if constexpr (kGlass) {
       bool next_outside;
       const Vec3 wi_prev = -wr;
-      const float phase_rand = rng.uniform();
+      const float phase_rand = numbers.uniform();
       wr = sample_phase_glass(-wr, outside ? p.eta : 1.0f / p.eta, wm, phase_rand, &next_outside);
       if (!next_outside) {
         hr = -hr;
@@ -379,8 +402,16 @@ RGB averaged_walks(const Walk& p, const Vec3& start, const Vec3& end, bool end_o
   const uint64_t pair = hash_pair(start, end);
   const uint64_t seed = walk_salt == 0 ? pair : mix64(pair ^ mix64(walk_salt));
   const int walks = walk_salt == 0 ? kMultiscatterWalks : kSaltedMultiscatterWalks;
+  // In the renderer the first walk draws from the vertex's walk numbers, as Cycles' one eval
+  // walk draws from the shading point's LCG: the vertex's sampling walk then starts where
+  // Cycles' does (walk_numbers.h).
+  WalkNumbers* numbers = MultiscatterWalkNumbers::current();
   RGB sum(0.0f);
   for (int k = 0; k < walks; ++k) {
+    if (k == 0 && numbers != nullptr) {
+      sum += walk_eval<kGlass>(p, start, end, end_outside, *numbers);
+      continue;
+    }
     PCG32 rng(static_cast<uint64_t>(k), seed);
     sum += walk_eval<kGlass>(p, start, end, end_outside, rng);
   }
@@ -391,6 +422,17 @@ RGB averaged_walks(const Walk& p, const Vec3& start, const Vec3& end, bool end_o
 PCG32 sampling_walk_rng(const Vec3& wo, Point2 u) {
   const uint64_t h = hash_pair(wo, Vec3(u.x, u.y, 0.0f));
   return PCG32(0x5a17u, walk_salt == 0 ? h : mix64(h ^ mix64(walk_salt)));
+}
+
+// Cycles' sampling walk from wo with its first facet stratified by u: drawing from this
+// thread's WalkNumbers where the renderer opened a scope, else from a generator seeded by the
+// bits of wo and u (and the thread's salt).
+template <bool kGlass>
+RGB sampling_walk(const Walk& p, const Vec3& wo, Point2 u, Vec3* wi) {
+  if (WalkNumbers* numbers = MultiscatterWalkNumbers::current())
+    return walk_sample_impl<kGlass>(p, wo, VertexWalkNumbers{*numbers, u}, wi);
+  PCG32 rng = sampling_walk_rng(wo, u);
+  return walk_sample_impl<kGlass>(p, wo, SeededWalkNumbers{rng, &u}, wi);
 }
 
 // A walk's exit as a sample: snapped, and refused when it did not leave or lies in the plane.
@@ -490,7 +532,7 @@ RGB MultiscatterGGXReflection::walk_f(Vec3 wo, Vec3 wi, PCG32& rng) const {
 RGB MultiscatterGGXReflection::walk_sample(Vec3 wo, PCG32& rng, Vec3* wi) const {
   const bool below = wo.z < 0.0f;
   if (below) wo.z = -wo.z;
-  const RGB t = walk_sample_impl<false>(walk_of(setup_, false), wo, rng, wi);
+  const RGB t = walk_sample_impl<false>(walk_of(setup_, false), wo, SeededWalkNumbers{rng, nullptr}, wi);
   if (below) wi->z = -wi->z;
   return t;
 }
@@ -499,9 +541,8 @@ WalkSample MultiscatterGGXReflection::sample_walk(Vec3 wo, Point2 u) const {
   if (wo.z == 0.0f) return WalkSample();
   const bool below = wo.z < 0.0f;
   if (below) wo.z = -wo.z;
-  PCG32 rng = sampling_walk_rng(wo, u);
   Vec3 wi;
-  const RGB t = walk_sample_impl<false>(walk_of(setup_, false), wo, rng, &wi, &u);
+  const RGB t = sampling_walk<false>(walk_of(setup_, false), wo, u, &wi);
   if (!(wi.z > 0.0f)) return WalkSample();
   return walk_exit(wi, t, below);
 }
@@ -638,7 +679,7 @@ RGB MultiscatterGGXGlass::walk_sample(Vec3 wo, PCG32& rng, Vec3* wi) const {
     wo.z = -wo.z;
     p.eta = 1.0f / p.eta;
   }
-  const RGB t = walk_sample_impl<true>(p, wo, rng, wi);
+  const RGB t = walk_sample_impl<true>(p, wo, SeededWalkNumbers{rng, nullptr}, wi);
   if (below) wi->z = -wi->z;
   return t;
 }
@@ -651,9 +692,8 @@ WalkSample MultiscatterGGXGlass::sample_walk(Vec3 wo, Point2 u) const {
     wo.z = -wo.z;
     p.eta = 1.0f / p.eta;
   }
-  PCG32 rng = sampling_walk_rng(wo, u);
   Vec3 wi;
-  const RGB t = walk_sample_impl<true>(p, wo, rng, &wi, &u);
+  const RGB t = sampling_walk<true>(p, wo, u, &wi);
   return walk_exit(wi, t, below);
 }
 

@@ -71,6 +71,10 @@ class PathSampler {
   // A number of its own for each (pixel, sample): the multiscatter walks' salt (nonzero, but
   // for one pair in 2^64).
   uint64_t walk_salt() const { return ((static_cast<uint64_t>(seed_) << 32) | index_) + 1u; }
+  // The seed of the multiscatter sampling walks' numbers at the path's first vertex, as Cycles'
+  // lcg_state_init makes it (walk_numbers.h): the pixel's hash plus the sample number times
+  // 0xb4bc3953; each bounce adds 16.
+  uint32_t walk_seed() const { return seed_ + index_ * 0xb4bc3953u; }
 
  private:
   enum Purpose : uint32_t { kFilter, kLight, kBsdf, kRussianRoulette, kPurposes };

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "bxdf/microfacet/walk_numbers.h"
 #include "bxdf/render/material_graph.h"
 #include "bxdf/render/ray.h"
 #include "bxdf/render/scene.h"
@@ -84,6 +85,18 @@ struct PathState {
   PathResult result;
   bool done = false;
   PendingShadow shadow;  // the last vertex's, until resolve_shadow()
+  // Where the path's first multiscatter sampling walk put its stratified facet among Cycles'
+  // walk numbers, for its later walks to keep Cycles' shift from it (walk_numbers.h).
+  microfacet::WalkAnchor walk_anchor;
+};
+
+// This thread's multiscatter walk state (multiscatter_ggx.h, walk_numbers.h), looked up once
+// per batch of paths: advance_deferring_shadow sets both for the vertex it shades (the camera
+// sample's salt, the vertex's walk numbers) and restores them.
+struct WalkSlots {
+  uint64_t* salt = nullptr;
+  microfacet::WalkNumbers** numbers = nullptr;
+  static WalkSlots of_this_thread();
 };
 
 // What advance() works out at a hit before the material's program runs: the surface point,
@@ -140,11 +153,11 @@ class PathTracer {
   // The same as that advance(), but the vertex's shadow ray may stay pending (s.shadow): the
   // caller tests it, for many paths at once (Scene::occluded_stream), and calls
   // resolve_shadow(s, occluded) before the path's next vertex and before finish(). A null
-  // `hit` (and `prepared`) is an escaped ray. `walk_salt_slot`: this thread's multiscatter walk
-  // salt (MultiscatterWalkSalt::thread_slot()), set to the sample's for the vertex.
+  // `hit` (and `prepared`) is an escaped ray. `walk_slots`: this thread's
+  // (WalkSlots::of_this_thread()).
   void advance_deferring_shadow(PathState& s, const PathSampler& sampler, PathStats& stats,
                                 const Hit* hit, const PreparedHit* prepared,
-                                const Vec3* registers, uint64_t* walk_salt_slot) const;
+                                const Vec3* registers, const WalkSlots& walk_slots) const;
   static void resolve_shadow(PathState& s, bool occluded) {
     if (!s.shadow.active) return;
     s.shadow.active = false;
