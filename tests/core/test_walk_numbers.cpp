@@ -24,11 +24,15 @@ struct CyclesLcg {
   uint32_t state;
   explicit CyclesLcg(uint32_t seed) : state(1103515245u * seed + 12345u) {}
   uint32_t step() { return state = 1103515245u * state + 12345u; }
-  float step_float() { return static_cast<float>(step()) * (1.0f / static_cast<float>(0xFFFFFFFFu)); }
+  float step_float() {
+    return static_cast<float>(step()) * (1.0f / static_cast<float>(0xFFFFFFFFu));
+  }
 };
 
 // The Cycles integer x whose float x · 2^-32 is u.
-uint32_t integer_of(float u) { return static_cast<uint32_t>(static_cast<double>(u) * 4294967296.0); }
+uint32_t integer_of(float u) {
+  return static_cast<uint32_t>(static_cast<double>(u) * 4294967296.0);
+}
 
 }  // namespace
 
@@ -37,7 +41,8 @@ TEST(WalkNumbers, DrawCyclesLcgForEveryDraw) {
     WalkAnchor anchor;
     WalkNumbers numbers(seed, &anchor);
     CyclesLcg cycles(seed);
-    for (int i = 0; i < 64; ++i) EXPECT_EQ(numbers.uniform(), cycles.step_float()) << seed << " " << i;
+    for (int i = 0; i < 64; ++i)
+      EXPECT_EQ(numbers.uniform(), cycles.step_float()) << seed << " " << i;
   }
 }
 
@@ -82,7 +87,8 @@ TEST(WalkNumbers, LaterVerticesKeepCyclesShiftFromTheFirstFacet) {
     const uint32_t want_x = integer_of(u.x) + (x_later[2] - x_first[2]);
     EXPECT_EQ(facet.y, static_cast<float>(want_y) * 0x1p-32f);
     EXPECT_EQ(facet.x, static_cast<float>(want_x) * 0x1p-32f);
-    for (int i = 3; i < 6; ++i) EXPECT_EQ(later.uniform(), static_cast<float>(x_later[i]) * 0x1p-32f);
+    for (int i = 3; i < 6; ++i)
+      EXPECT_EQ(later.uniform(), static_cast<float>(x_later[i]) * 0x1p-32f);
   }
 }
 

@@ -532,7 +532,8 @@ RGB MultiscatterGGXReflection::walk_f(Vec3 wo, Vec3 wi, PCG32& rng) const {
 RGB MultiscatterGGXReflection::walk_sample(Vec3 wo, PCG32& rng, Vec3* wi) const {
   const bool below = wo.z < 0.0f;
   if (below) wo.z = -wo.z;
-  const RGB t = walk_sample_impl<false>(walk_of(setup_, false), wo, SeededWalkNumbers{rng, nullptr}, wi);
+  const RGB t =
+      walk_sample_impl<false>(walk_of(setup_, false), wo, SeededWalkNumbers{rng, nullptr}, wi);
   if (below) wi->z = -wi->z;
   return t;
 }

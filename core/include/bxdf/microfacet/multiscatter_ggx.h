@@ -23,11 +23,14 @@
 // camera sample's number is mixed into the walks' seed, so a 4-walk estimator is used with
 // independent walks per sample, and a pixel converges to the expectation as Cycles' one walk
 // per sample does (its own error shrinks as 1/√samples and is part of the image noise).
-// Outside a scope (salt 0) f is the fixed function above. Making f itself exact (tabulating
-// the walk's expectation) was measured out of reach: 16 → 64 → 256 walks give relative RMS
-// 0.164 → 0.072 → 0.042 (reflection α 0.7) at 4 → 16 times the cost, and scrambled Sobol walks
-// only 0.139 → 0.059 → 0.033; a table needs the per-order expectations over α, the colour's
-// and the interpolated Fresnel's (η, cspec0) powers, and η for glass.
+// Inside a MultiscatterWalkNumbers scope too (the renderer opens one per path vertex) the
+// first of those walks draws from the vertex's numbers, as Cycles' eval walk draws from the
+// shading point's LCG (walk_numbers.h), so that the vertex's sampling walk starts where
+// Cycles' does. Outside a scope (salt 0) f is the fixed function above. Making f itself exact
+// (tabulating the walk's expectation) was measured out of reach: 16 → 64 → 256 walks give
+// relative RMS 0.164 → 0.072 → 0.042 (reflection α 0.7) at 4 → 16 times the cost, and
+// scrambled Sobol walks only 0.139 → 0.059 → 0.033; a table needs the per-order expectations
+// over α, the colour's and the interpolated Fresnel's (η, cspec0) powers, and η for glass.
 //
 // Cycles' quirks kept: its eval walks from the shallower direction, but its walk is not
 // reciprocal (mf_sample_height puts an upward ray that does not escape at the top height,
@@ -147,8 +150,10 @@ class MultiscatterGGXReflection {
   // f cos θi / p (0 when the walk does not leave within 10 bounces).
   RGB walk_sample(Vec3 wo, PCG32& rng, Vec3* wi) const;
   // Cycles' sampling walk from wo: its first facet is the visible normal that u picks (the
-  // walk's own first draw, stratified by the caller's u), the rest come from a generator
-  // seeded by the bits of wo and u and the thread's walk salt (Cycles seeds an LCG per hit).
+  // walk's own first draw, stratified by the caller's u); the rest come from the thread's
+  // MultiscatterWalkNumbers where the renderer opened a scope (Cycles' LCG per path vertex,
+  // walk_numbers.h, where u is the facet of the path's first walk only), else from a
+  // generator seeded by the bits of wo and u and the thread's walk salt.
   WalkSample sample_walk(Vec3 wo, Point2 u) const;
 
   const MultiscatterSetup& setup() const { return setup_; }
