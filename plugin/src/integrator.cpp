@@ -287,17 +287,26 @@ microfacet::WalkNumbers vertex_walk_numbers(PathState& s, const PathSampler& sam
   return microfacet::WalkNumbers(sampler.walk_seed() + 16u * bounces, &s.walk_anchor);
 }
 
+// The multiscatter walks' state for the vertex an advance() shades, in scopes that close with
+// it. Multiscatter GGX evaluates a walk estimate seeded by the directions; salted per sample,
+// its error averages away over a pixel's samples instead of staying fixed where they share the
+// directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does. Its
+// sampling walks (and its first eval walk) draw Cycles' numbers for the vertex.
+struct VertexWalkScopes {
+  microfacet::MultiscatterWalkSalt salt;
+  microfacet::WalkNumbers numbers;
+  microfacet::MultiscatterWalkNumbers numbers_scope;
+  VertexWalkScopes(PathState& s, const PathSampler& sampler)
+      : salt(sampler.walk_salt()),
+        numbers(vertex_walk_numbers(s, sampler)),
+        numbers_scope(&numbers) {}
+};
+
 }  // namespace
 
 void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
                          const Hit* found_hit) const {
-  // Multiscatter GGX evaluates a walk estimate seeded by the directions; salted per sample,
-  // its error averages away over a pixel's samples instead of staying fixed where they share
-  // the directions (multiscatter_ggx.h, Determinism), as Cycles' one walk per sample does.
-  const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
-  // Its sampling walks draw Cycles' numbers for the vertex (walk_numbers.h).
-  microfacet::WalkNumbers numbers = vertex_walk_numbers(s, sampler);
-  const microfacet::MultiscatterWalkNumbers walk_numbers(&numbers);
+  const VertexWalkScopes walks(s, sampler);
   if (!found_hit) return step(s, sampler, stats, nullptr, nullptr, nullptr);
   PreparedHit prepared;
   prepare(s, sampler, *found_hit, &prepared);
@@ -314,9 +323,7 @@ void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& st
 void PathTracer::advance(PathState& s, const PathSampler& sampler, PathStats& stats,
                          const Hit& hit, const PreparedHit& prepared,
                          const Vec3* registers) const {
-  const microfacet::MultiscatterWalkSalt walk_salt(sampler.walk_salt());
-  microfacet::WalkNumbers numbers = vertex_walk_numbers(s, sampler);
-  const microfacet::MultiscatterWalkNumbers walk_numbers(&numbers);
+  const VertexWalkScopes walks(s, sampler);
   step(s, sampler, stats, &hit, &prepared, registers);
   test_shadow(s);
 }
