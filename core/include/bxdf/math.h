@@ -122,12 +122,22 @@ inline bool is_finite(const Vec3& v) {
 // Flips v into the hemisphere of ref.
 inline Vec3 face_forward(const Vec3& v, const Vec3& ref) { return dot(v, ref) < 0.0f ? -v : v; }
 
+// A squared length this close to 1 (|v| within about 4 ulps of 1) is a unit vector already:
+// rescaling it would change only its last bits.
+constexpr float kUnitLengthSquaredTolerance = 1e-6f;
+BXDF_KERNEL bool is_unit_length_squared(float l2) {
+  return std::fabs(l2 - 1.0f) <= kUnitLengthSquaredTolerance;
+}
+
 // Normalises a direction a caller handed us. Returns false for zero, tiny or non-finite
-// vectors, which every model treats as "no direction" and answers with 0.
+// vectors, which every model treats as "no direction" and answers with 0. A unit vector is
+// kept as it is: the renderer hands every model unit directions, several times per path
+// vertex, and the square root and division in series would cost it more than the model's own
+// arithmetic for the simple ones (Lambertian).
 BXDF_KERNEL bool normalize_direction(Vec3& v) {
   const float l2 = length_squared(v);
   if (!(l2 > 1e-30f) || !(l2 <= std::numeric_limits<float>::max())) return false;
-  v = v * (1.0f / std::sqrt(l2));
+  if (!is_unit_length_squared(l2)) v = v * (1.0f / std::sqrt(l2));
   return true;
 }
 
