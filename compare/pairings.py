@@ -50,7 +50,6 @@ def cycles_quirks(spec: SceneSpec, material) -> list:
     the model's converged image: a pairing with CYCLES is then approximate, with these reasons."""
     params = material.params
     quirks = []
-    light_found_by_sampling = spec.max_bounces > 0 or any(spec.world_color)
     # Multiscatter GGX: Cycles' eval walk and sampling walk disagree (white reflection at α 0.64:
     # 0.922 by eval, 1.000 by the walk); BXDF_LAB evaluates with the one and samples with the
     # other as Cycles does, and weighs them by the same pdf (mf_ggx_pdf) for reflection. For
@@ -67,11 +66,16 @@ def cycles_quirks(spec: SceneSpec, material) -> list:
         quirks.append(f"{material.name}: Cycles weighs the light sampling finds on the rough "
                       "refraction's pairs that no facet reaches by its eval's pdf, which its "
                       "sampler never realises; BXDF_LAB by its cover density")
+    # Clearcoat: Cycles draws GGX's visible normals and weights them by a GTR1 pdf, which
+    # biases what BSDF sampling finds; BXDF_LAB draws and weights its samples the same way, but
+    # its MIS pdf is the mixture's density, so where a light is found both ways the two
+    # estimates are mixed in other proportions.
     if (material.model == "cycles_principled" and params.get("clearcoat", 0.0) > 0.0
-            and light_found_by_sampling):
-        quirks.append(f"{material.name}: Cycles samples the clearcoat with GGX but reports "
-                      "GTR1's pdf, so its BSDF-sampled light (the world, bounces) is weighted "
-                      "wrongly; BXDF_LAB's sampling and pdf agree")
+            and params.get("clearcoat_roughness", 0.03) ** 4 > 1e-7 and soft_lighting(spec)):
+        quirks.append(f"{material.name}: Cycles weighs its clearcoat's BSDF samples (GGX "
+                      "visible normals weighted by a GTR1 pdf) against light sampling by that "
+                      "pdf in MIS, BXDF_LAB by the mixture's density, which light found by both "
+                      "light and BSDF sampling shows")
     return quirks
 
 

@@ -260,9 +260,10 @@ def sweep_principled_multiscatter_direct():
 
 
 def principled_clearcoat_world():
-    """Clearcoat spheres in a white world (no lights): the light is found by sampling, where
-    Cycles' clearcoat reports GTR1's pdf for GGX samples (pairings.cycles_quirks). The top row
-    has no clearcoat and shows what the rest of the material does."""
+    """Clearcoat spheres in a white world (no lights): the light is found by BSDF sampling
+    alone, where Cycles' clearcoat weights GGX's visible normals by a GTR1 pdf (biased), as
+    BXDF_LAB's Cycles sampler does too. The top row has no clearcoat and shows what the rest of
+    the material does."""
     base = {"base_color": (0.05, 0.05, 0.05), "roughness": 0.6}
     rows = [[{**base, "specular": s} for s in (0.0, 0.25, 0.5, 0.75, 1.0)],
             [{**base, "clearcoat": 1.0, "clearcoat_roughness": r} for r in (0.0, 0.1, 0.3, 0.6, 1.0)]]

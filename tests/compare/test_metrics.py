@@ -173,12 +173,16 @@ def test_measured_cycles_quirks_make_their_pairings_approximate():
     assert len(reasons) == 5 and all("16-walk" in r and "Cycles" not in r for r in reasons)
     # The single-scatter row alone is exact against the analytic image.
     assert pairings.analytic_limits(direct.objects[0].material) == []
-    # The clearcoat's wrong pdf only matters where light is found by sampling: not under a
-    # point light with direct light only, but in a lit world.
+    # The clearcoat: BXDF_LAB draws and weights its samples as Cycles does (GGX visible
+    # normals over a GTR1 pdf), so a world of one colour, found by BSDF sampling alone, is
+    # exact; where light sampling finds the light too (an area light), the MIS pdfs differ.
     assert pairings.label(scenes.get("sweep_principled_lobes"), "BXDF_LAB", "CYCLES") == "exact"
     world = scenes.get("principled_clearcoat_world")
-    assert pairings.label(world, "BXDF_LAB", "CYCLES") == "approximate"
-    assert any("GTR1" in r for r in pairings.approximations(world, "BXDF_LAB", "CYCLES"))
+    assert pairings.label(world, "BXDF_LAB", "CYCLES") == "exact"
+    lit = replace(world, lights=(AreaLight((0.0, -3.0, 3.0), (0.0, 1.0, -1.0), "SQUARE", 100.0, 1.0),))
+    reasons = pairings.approximations(lit, "BXDF_LAB", "CYCLES")
+    # The four rough clearcoats; the singular one (clearcoat roughness 0) is exact.
+    assert len(reasons) == 4 and all("GTR1" in r for r in reasons)
     # Rough refraction: exact under point lights in a black world (no MIS), approximate where
     # light sampling and BSDF sampling both find the light (a lit world here).
     transmission = scenes.get("sweep_principled_transmission")

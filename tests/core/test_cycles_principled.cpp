@@ -428,6 +428,73 @@ TEST(CyclesPrincipled, MultiGGXSwitchesAtCyclesThresholds) {
   EXPECT_GT(differ, 150);
 }
 
+// Cycles draws the clearcoat from GGX's visible normals (bsdf_microfacet_ggx_sample) and
+// weights the sample by eval over its mixture pdf, in which the clearcoat reports
+// G1(wo, α² 0.0625) D_GTR1 / (4 cos θo), not the density of that draw. Its BSDF-sampled
+// estimate therefore converges to ∫ eval p_drawn / p_reported, not to ∫ eval, and sample_f
+// (Cycles' sampler) must converge there too. Both integrals by quadrature, with GGX's visible
+// normal density and Cycles' reported pdf written out here.
+TEST(CyclesPrincipled, ClearcoatSamplesConvergeWhereCyclesDo) {
+  Params p;
+  p.base = {0.05, 0.05, 0.05};
+  p.roughness = 0.6;
+  p.clearcoat = 1.0;
+  p.clearcoat_roughness = 0.6;
+  const BxDFPtr m = make("cycles_principled", p.to_params());
+  const CyclesPrincipled direct(cycles_principled_inputs(m->params()));
+  EXPECT_FALSE(m->sample_f_is_exact());
+  const double alpha = p.clearcoat_roughness * p.clearcoat_roughness, a2 = alpha * alpha;
+  const auto ggx_g1 = [](double cos_n, double alpha2) {
+    return 2 / (1 + std::sqrt(1 + alpha2 * (1 - cos_n * cos_n) / (cos_n * cos_n)));
+  };
+  const auto d_gtr1 = [&](double cos_m) {
+    return (a2 - 1) / (kPiD * std::log(a2) * (1 + (a2 - 1) * cos_m * cos_m));
+  };
+  const auto d_ggx = [&](double cos_m) {
+    const double c2 = cos_m * cos_m, t = a2 * c2 + (1 - c2);
+    return a2 / (kPiD * t * t);
+  };
+  for (const double cos_o : {0.9, 0.45}) {
+    const Vec3 wo(static_cast<float>(std::sqrt(1 - cos_o * cos_o)), 0.0f, static_cast<float>(cos_o));
+    const CyclesPrincipled::Closures c = direct.closures(wo, false);
+    const double share = c.sample_weight[CyclesPrincipled::kClearcoatClosure] / c.sample_total;
+    ASSERT_GT(share, 0.1);
+    // Quadrature over the hemisphere in (cos θi, φ).
+    constexpr int kU = 600, kPhi = 1200;
+    double cycles = 0, exact = 0;
+    for (int i = 0; i < kU; ++i) {
+      const double u = (i + 0.5) / kU, sin_i = std::sqrt(1 - u * u);
+      for (int j = 0; j < kPhi; ++j) {
+        const double phi = 2 * kPiD * (j + 0.5) / kPhi;
+        const Vec3 wi(static_cast<float>(sin_i * std::cos(phi)), static_cast<float>(sin_i * std::sin(phi)),
+                      static_cast<float>(u));
+        const D3 h = normd({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
+        const double eval = avg(C3{m->f(wo, wi).r, m->f(wo, wi).g, m->f(wo, wi).b}) * u;
+        const double mixture = m->pdf(wo, wi);
+        const double gtr1 = d_gtr1(h.z) * h.z / (4 * dotd(d3(wo), h));
+        const double drawn = ggx_g1(cos_o, a2) * d_ggx(h.z) / (4 * cos_o);
+        const double reported = ggx_g1(cos_o, 0.0625) * d_gtr1(h.z) / (4 * cos_o);
+        const double weight = (2 * kPiD / kPhi) / kU;
+        exact += eval * weight;
+        cycles += eval * (mixture + share * (drawn - gtr1)) / (mixture + share * (reported - gtr1)) *
+                  weight;
+      }
+    }
+    PCG32 rng(31);
+    constexpr int kN = 400000;
+    double sum = 0, sum2 = 0;
+    for (int k = 0; k < kN; ++k) {
+      const BxDFSample s = m->sample_f(wo, Point2(rng.uniform(), rng.uniform()));
+      const double w = s.valid() ? (s.f.r + s.f.g + s.f.b) / 3 * std::fabs(s.wi.z) / s.pdf : 0.0;
+      sum += w;
+      sum2 += w * w;
+    }
+    const double mean = sum / kN, sigma = std::sqrt((sum2 / kN - mean * mean) / kN);
+    EXPECT_NEAR(mean, cycles, 4 * sigma) << "cos θo " << cos_o << ": exact " << exact;
+    EXPECT_GT(std::fabs(cycles - exact), 10 * sigma) << "cos θo " << cos_o;  // the test can tell
+  }
+}
+
 // The model class is built from plain values; make() maps the registry's parameters onto them.
 TEST(CyclesPrincipled, PlainValueConstructorMatchesRegistry) {
   Params p = parameter_sets()[1];

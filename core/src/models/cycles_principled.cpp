@@ -272,7 +272,7 @@ float CyclesPrincipled::lobe_density(int k, const Vec3& wo, const Vec3& wi, floa
 }
 
 bool CyclesPrincipled::lobe_sample(int k, const Vec3& wo, Point2 u, float eta, bool back_face,
-                                   bool cover, Vec3* wi) const {
+                                   bool as_cycles, Vec3* wi) const {
   switch (k) {
     case kDiffuseClosure:
     case kSheenClosure:
@@ -299,9 +299,11 @@ bool CyclesPrincipled::lobe_sample(int k, const Vec3& wo, Point2 u, float eta, b
       return s_.glass_reflection.sample(wo, u, wi);
     }
     case kGlassRefractionClosure: {
-      return refraction_lobe(eta).sample(wo, u, wi, cover);
+      return refraction_lobe(eta).sample(wo, u, wi, !as_cycles);
     }
-    case kClearcoatClosure: return s_.clearcoat_lobe.sample(wo, u, wi);
+    case kClearcoatClosure:
+      return as_cycles ? s_.clearcoat_lobe.cycles_sample(wo, u, wi)
+                       : s_.clearcoat_lobe.sample(wo, u, wi);
     default: return false;
   }
 }
@@ -444,7 +446,7 @@ BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool as_cycles,
                    : (back ? s_.glass_ms_back : s_.glass_ms).sample_walk(wo, v);
       if (!w.ok) return s;
       wi = specular ? from_tangent(w.wi) : w.wi;
-    } else if (!lobe_sample(k, wo, v, c.eta, back, !as_cycles, &wi)) {
+    } else if (!lobe_sample(k, wo, v, c.eta, back, as_cycles, &wi)) {
       return s;
     }
     // f of the multiple-scattering lobes hashes the directions: use the bits f() will see.
@@ -461,13 +463,21 @@ BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool as_cycles,
       s.f = c.weight[k] * w.weight * (own_pdf / std::fabs(wi.z)) + eval_upper(wo, wi, c, back, k);
     } else {
       s.f = back ? eval(Vec3(wo.x, wo.y, -wo.z), Vec3(wi.x, wi.y, -wi.z)) : eval(wo, wi);
-      if (drawn_without_cover) {
-        // Drawn without the refraction's cover samples: the weight is f over the density of
-        // what was drawn, which lacks the cover's share; pdf stays the mixture's (for MIS).
-        const float drawn =
-            s.pdf - c.sample_weight[kGlassRefractionClosure] / c.sample_total * cover_excess;
-        if (!(drawn > 0.0f)) return BxDFSample();
-        s.f *= s.pdf / drawn;
+    }
+    if (as_cycles) {
+      // Cycles' weight is eval over its mixture pdf, which differs from density() where its
+      // draw does: without the refraction's cover samples (the density of what was drawn)
+      // and with the clearcoat's reported pdf (not the density of its GGX draw, so Cycles'
+      // clearcoat weight is biased, and this reproduces it). pdf stays the mixture's (MIS).
+      float cycles_pdf = s.pdf;
+      if (drawn_without_cover)
+        cycles_pdf -= c.sample_weight[kGlassRefractionClosure] / c.sample_total * cover_excess;
+      if (c.sample_weight[kClearcoatClosure] != 0.0f && !s_.clearcoat_singular && wi.z > 0.0f)
+        cycles_pdf += c.sample_weight[kClearcoatClosure] / c.sample_total *
+                      (s_.clearcoat_lobe.cycles_pdf(wo, wi) - s_.clearcoat_lobe.density(wo, wi));
+      if (cycles_pdf != s.pdf) {
+        if (!(cycles_pdf > 0.0f)) return BxDFSample();
+        s.f *= s.pdf / cycles_pdf;
       }
     }
     s.flags = (wi.z > 0.0f ? kReflection : kTransmission) |

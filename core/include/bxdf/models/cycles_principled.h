@@ -34,9 +34,11 @@
 // the Fresnel colour at the normal for the Fresnel closures and the sheen's average) and
 // samples it; pdf is the mixture's density, so sample_f, f and pdf agree, except where Cycles'
 // sampler differs from the exact one (sample_f_is_exact is then false; sample_exact samples
-// the mixture's density): a multiscatter closure is sampled with its walk, and a rough
-// refraction draws no cover samples (cycles_principled_lobes.h), so f·|cos θi|/pdf is
-// Cycles' weight, eval over the density of what was drawn, and pdf stays the mixture's.
+// the mixture's density): a multiscatter closure is sampled with its walk, a rough
+// refraction draws no cover samples, and the clearcoat is drawn from GGX's visible normals
+// (cycles_principled_lobes.h), so f·|cos θi|/pdf is Cycles' weight: eval over Cycles' mixture
+// pdf (the density of what was drawn, with the clearcoat's reported pdf in it, as Cycles'
+// bias has it), and pdf stays the mixture's density.
 // Not reciprocal when there is transmission: the glass weights depend on F(cos θo).
 #pragma once
 
@@ -96,8 +98,8 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
       fn(*this);
   }
   // Cycles' sample: a multiscatter closure is sampled with its walk (cycles_multiscatter.h),
-  // a rough refraction from its facets alone; sample_exact samples density() for exact
-  // importance sampling of f.
+  // a rough refraction from its facets alone, the clearcoat from GGX's visible normals with
+  // Cycles' weight; sample_exact samples density() for exact importance sampling of f.
   BxDFSample sample(Vec3 wo, Point2 u, ClosurePick pick = ClosurePick::kByWeight) const {
     return sample_closures(wo, u, true, pick);
   }
@@ -105,7 +107,8 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
     return sample_closures(wo, u, false, ClosurePick::kByWeight);
   }
   bool sample_f_is_exact() const override {
-    return !(s_.specular_multi || s_.glass_multi || has_rough_refraction());
+    return !(s_.specular_multi || s_.glass_multi || has_rough_refraction() ||
+             (s_.has_clearcoat && !s_.clearcoat_singular));
   }
   float density(Vec3 wo, Vec3 wi, ClosurePick pick = ClosurePick::kByWeight) const;
   // eval and density with the closures built once (BxDF::f_pdf).
@@ -165,9 +168,9 @@ class CyclesPrincipled final : public BxDFImpl<CyclesPrincipled> {
     lobe.eta = eta;
     return lobe;
   }
-  // `cover`: the rough refraction draws its cover samples too (the exact sampler), or not
-  // (Cycles' sampler).
-  bool lobe_sample(int k, const Vec3& wo, Point2 u, float eta, bool back_face, bool cover,
+  // `as_cycles`: Cycles' draw (the rough refraction without its cover samples, the clearcoat
+  // from GGX's visible normals), else the exact one.
+  bool lobe_sample(int k, const Vec3& wo, Point2 u, float eta, bool back_face, bool as_cycles,
                    Vec3* wi) const;
   Vec3 to_tangent(const Vec3& w) const;    // into the rotated tangent frame
   Vec3 from_tangent(const Vec3& w) const;

@@ -85,8 +85,9 @@ struct GGXFresnelReflection {
 
 // Cycles' clearcoat (MICROFACET_GGX_CLEARCOAT): GTR1 D with α, G1 with a fixed α of 0.25, the
 // interpolated Fresnel of η 1.5 with cspec0 0.04 (= the dielectric Fresnel), times 0.25
-// (the model multiplies by the clearcoat amount). Sampled here from GTR1 itself (D cos θm);
-// Cycles samples GGX's visible normals and reports GTR1's density, which do not match.
+// (the model multiplies by the clearcoat amount). The exact sampler draws GTR1 itself
+// (D cos θm); Cycles draws GGX's visible normals of the same α and reports a GTR1 density,
+// G1(wo) D / (4 cos θo), which does not match what it drew (cycles_sample, cycles_pdf).
 struct GTR1Clearcoat {
   float alpha = 0.1f;
 
@@ -127,6 +128,21 @@ struct GTR1Clearcoat {
     if (!(dot(wo, m) > 0.0f)) return false;
     *wi = reflect(wo, m);
     return wi->z > 0.0f;
+  }
+  // Cycles' draw (bsdf_microfacet_ggx_sample): a visible normal of GGX with this α.
+  bool cycles_sample(const Vec3& wo, Point2 u, Vec3* wi) const {
+    const Vec3 m = microfacet::GGX(alpha, alpha).sample_wh(wo, u);
+    if (!(dot(wo, m) > 0.0f)) return false;
+    *wi = reflect(wo, m);
+    return wi->z > 0.0f;
+  }
+  // The pdf Cycles reports for it, in its sample and its eval alike: G1(wo) (fixed α² 0.0625)
+  // D_GTR1 / (4 cos θo). Not a density: its integral is not 1, and not cycles_sample's.
+  float cycles_pdf(const Vec3& wo, const Vec3& wi) const {
+    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
+    Vec3 m = wo + wi;
+    if (!normalize_direction(m)) return 0.0f;
+    return g1_fixed(wo.z) * d_gtr1(m.z, alpha) / (4.0f * wo.z);
   }
   float fresnel_at_normal(const Vec3& wo) const {
     return 0.25f * microfacet::cycles_interpolate_fresnel(wo.z, 1.5f, RGB(0.04f)).r;
