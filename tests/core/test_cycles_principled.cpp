@@ -469,7 +469,8 @@ TEST(CyclesPrincipled, ClearcoatSamplesConvergeWhereCyclesDo) {
         const Vec3 wi(static_cast<float>(sin_i * std::cos(phi)), static_cast<float>(sin_i * std::sin(phi)),
                       static_cast<float>(u));
         const D3 h = normd({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
-        const double eval = avg(C3{m->f(wo, wi).r, m->f(wo, wi).g, m->f(wo, wi).b}) * u;
+        const RGB f = m->f(wo, wi);
+        const double eval = avg(C3{f.r, f.g, f.b}) * u;
         const double mixture = m->pdf(wo, wi);
         const double gtr1 = d_gtr1(h.z) * h.z / (4 * dotd(d3(wo), h));
         const double drawn = ggx_g1(cos_o, a2) * d_ggx(h.z) / (4 * cos_o);

@@ -324,7 +324,7 @@ class BxDFImpl : public BxDF {
         const float vx = dx[i], vy = dy[i], vz = dz[i];
         const float l2 = vx * vx + vy * vy + vz * vz;
         const bool good = l2 > 1e-30f && l2 <= std::numeric_limits<float>::max();
-        const float inv = is_unit_length_squared(l2) ? 1.0f : 1.0f / std::sqrt(good ? l2 : 1.0f);
+        const float inv = normalizing_scale(l2);
         x[i] = good ? vx * inv : 0.0f;
         y[i] = good ? vy * inv : 0.0f;
         z[i] = good ? vz * inv : 1.0f;
@@ -401,7 +401,7 @@ class BxDFImpl : public BxDF {
     const bool wi_ok = l2 > 1e-30f && l2 <= std::numeric_limits<float>::max();
     // Normalised as normalize_direction() does it, so that f and pdf see the direction
     // returned.
-    const float inv = is_unit_length_squared(l2) ? 1.0f : 1.0f / std::sqrt(wi_ok ? l2 : 1.0f);
+    const float inv = normalizing_scale(l2);
     // One condition per select (GCC 12 does not if-convert this as one && chain).
     float pdf = finite_nonnegative(s.pdf) ? s.pdf : 0.0f;
     pdf = wi_ok ? pdf : 0.0f;

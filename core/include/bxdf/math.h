@@ -129,6 +129,14 @@ BXDF_KERNEL bool is_unit_length_squared(float l2) {
   return std::fabs(l2 - 1.0f) <= kUnitLengthSquaredTolerance;
 }
 
+// The factor that normalises a vector of squared length l2 as normalize_direction() does:
+// 1 for a unit vector, and 1 where l2 is refused (tiny or not finite), which callers that
+// select instead of branching mask themselves (batch blocks, sampled directions, half vectors).
+BXDF_KERNEL float normalizing_scale(float l2) {
+  const bool refused = !(l2 > 1e-30f) || !(l2 <= std::numeric_limits<float>::max());
+  return refused || is_unit_length_squared(l2) ? 1.0f : 1.0f / std::sqrt(l2);
+}
+
 // Normalises a direction a caller handed us. Returns false for zero, tiny or non-finite
 // vectors, which every model treats as "no direction" and answers with 0. A unit vector is
 // kept as it is: the renderer hands every model unit directions, several times per path

@@ -202,7 +202,7 @@ class TorranceSparrow final : public BxDFImpl<TorranceSparrow<Distribution>> {
   }
   BXDF_KERNEL static Vec3 half_vector(const Vec3& h, float l2) {
     const bool ok = half_vector_ok(l2);
-    const float inv = is_unit_length_squared(l2) ? 1.0f : 1.0f / std::sqrt(ok ? l2 : 1.0f);
+    const float inv = normalizing_scale(l2);
     return {ok ? h.x * inv : 0.0f, ok ? h.y * inv : 0.0f, ok ? h.z * inv : 1.0f};
   }
 
