@@ -289,7 +289,10 @@ random walk: f |cos theta_i| / pdf is the walk's weight and pdf is pdf(wo, wi) (
 approximate pdf), so f differs from f(wo, wi). So does a rough refraction (Glass, Refraction,
 a Principled BSDF's glass): Cycles draws it from its facets alone, which never reach some pairs
 where f > 0; f |cos theta_i| / pdf is f over the density of that draw and pdf is pdf(wo, wi).
-exact=True draws wi from pdf instead, with f and pdf those of wi.)doc")
+So does a Principled BSDF's rough clearcoat: Cycles draws it from GGX's visible normals and
+divides by a GTR1 pdf that is not that draw's density, so f |cos theta_i| / pdf is Cycles'
+(biased) weight, not an estimate of f alone; pdf is pdf(wo, wi). exact=True draws wi from pdf
+instead, with f and pdf those of wi.)doc")
       .def("rho", &model_rho, py::arg("wo"), py::arg("n_samples"), py::arg("seed") = 0,
            R"doc(rho(wo, n_samples, seed=0) -> ndarray (N, 3) float32
 
