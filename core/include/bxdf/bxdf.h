@@ -323,7 +323,7 @@ class BxDFImpl : public BxDF {
       for (size_t i = 0; i < m; ++i) {
         const float vx = dx[i], vy = dy[i], vz = dz[i];
         const float l2 = vx * vx + vy * vy + vz * vz;
-        const bool good = l2 > 1e-30f && l2 <= std::numeric_limits<float>::max();
+        const bool good = is_direction_length_squared(l2);
         const float inv = normalizing_scale(l2);
         x[i] = good ? vx * inv : 0.0f;
         y[i] = good ? vy * inv : 0.0f;
@@ -398,7 +398,7 @@ class BxDFImpl : public BxDF {
   // (pdf = 0 marks a refused one, with all of it zero); wi is returned normalised.
   BXDF_KERNEL static BxDFSample guard_sample(const BxDFSample& s) {
     const float l2 = length_squared(s.wi);
-    const bool wi_ok = l2 > 1e-30f && l2 <= std::numeric_limits<float>::max();
+    const bool wi_ok = is_direction_length_squared(l2);
     // Normalised as normalize_direction() does it, so that f and pdf see the direction
     // returned.
     const float inv = normalizing_scale(l2);

@@ -122,6 +122,11 @@ inline bool is_finite(const Vec3& v) {
 // Flips v into the hemisphere of ref.
 inline Vec3 face_forward(const Vec3& v, const Vec3& ref) { return dot(v, ref) < 0.0f ? -v : v; }
 
+// A squared length a direction may have: not tiny (zero), not infinite, not NaN.
+BXDF_KERNEL bool is_direction_length_squared(float l2) {
+  return l2 > 1e-30f && l2 <= std::numeric_limits<float>::max();
+}
+
 // A squared length this close to 1 (|v| within about 4 ulps of 1) is a unit vector already:
 // rescaling it would change only its last bits.
 constexpr float kUnitLengthSquaredTolerance = 1e-6f;
@@ -133,8 +138,8 @@ BXDF_KERNEL bool is_unit_length_squared(float l2) {
 // 1 for a unit vector, and 1 where l2 is refused (tiny or not finite), which callers that
 // select instead of branching mask themselves (batch blocks, sampled directions, half vectors).
 BXDF_KERNEL float normalizing_scale(float l2) {
-  const bool refused = !(l2 > 1e-30f) || !(l2 <= std::numeric_limits<float>::max());
-  return refused || is_unit_length_squared(l2) ? 1.0f : 1.0f / std::sqrt(l2);
+  return !is_direction_length_squared(l2) || is_unit_length_squared(l2) ? 1.0f
+                                                                         : 1.0f / std::sqrt(l2);
 }
 
 // Normalises a direction a caller handed us. Returns false for zero, tiny or non-finite
@@ -144,7 +149,7 @@ BXDF_KERNEL float normalizing_scale(float l2) {
 // arithmetic for the simple ones (Lambertian).
 BXDF_KERNEL bool normalize_direction(Vec3& v) {
   const float l2 = length_squared(v);
-  if (!(l2 > 1e-30f) || !(l2 <= std::numeric_limits<float>::max())) return false;
+  if (!is_direction_length_squared(l2)) return false;
   if (!is_unit_length_squared(l2)) v = v * (1.0f / std::sqrt(l2));
   return true;
 }

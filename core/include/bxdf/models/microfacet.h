@@ -198,7 +198,7 @@ class TorranceSparrow final : public BxDFImpl<TorranceSparrow<Distribution>> {
   // normalize(h = wo + wi) as normalize_direction() computes it, with a select instead of a
   // branch: +z where h is degenerate (half_vector_ok false).
   BXDF_KERNEL static bool half_vector_ok(float l2) {
-    return l2 > 1e-30f && l2 <= std::numeric_limits<float>::max();
+    return is_direction_length_squared(l2);
   }
   BXDF_KERNEL static Vec3 half_vector(const Vec3& h, float l2) {
     const bool ok = half_vector_ok(l2);
