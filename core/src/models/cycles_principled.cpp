@@ -474,7 +474,7 @@ BxDFSample CyclesPrincipled::sample_closures(Vec3 wo, Point2 u, bool as_cycles,
         cycles_pdf -= c.sample_weight[kGlassRefractionClosure] / c.sample_total * cover_excess;
       if (c.sample_weight[kClearcoatClosure] != 0.0f && !s_.clearcoat_singular && wi.z > 0.0f)
         cycles_pdf += c.sample_weight[kClearcoatClosure] / c.sample_total *
-                      (s_.clearcoat_lobe.cycles_pdf(wo, wi) - s_.clearcoat_lobe.density(wo, wi));
+                      s_.clearcoat_lobe.cycles_pdf_excess(wo, wi);
       if (cycles_pdf != s.pdf) {
         if (!(cycles_pdf > 0.0f)) return BxDFSample();
         s.f *= s.pdf / cycles_pdf;

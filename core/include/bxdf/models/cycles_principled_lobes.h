@@ -87,7 +87,7 @@ struct GGXFresnelReflection {
 // interpolated Fresnel of η 1.5 with cspec0 0.04 (= the dielectric Fresnel), times 0.25
 // (the model multiplies by the clearcoat amount). The exact sampler draws GTR1 itself
 // (D cos θm); Cycles draws GGX's visible normals of the same α and reports a GTR1 density,
-// G1(wo) D / (4 cos θo), which does not match what it drew (cycles_sample, cycles_pdf).
+// G1(wo) D / (4 cos θo), which does not match what it drew (cycles_sample, cycles_pdf_excess).
 struct GTR1Clearcoat {
   float alpha = 0.1f;
 
@@ -136,13 +136,17 @@ struct GTR1Clearcoat {
     *wi = reflect(wo, m);
     return wi->z > 0.0f;
   }
-  // The pdf Cycles reports for it, in its sample and its eval alike: G1(wo) (fixed α² 0.0625)
-  // D_GTR1 / (4 cos θo). Not a density: its integral is not 1, and not cycles_sample's.
-  float cycles_pdf(const Vec3& wo, const Vec3& wi) const {
+  // How much the pdf Cycles reports for it (in its sample and its eval alike: G1(wo), fixed
+  // α² 0.0625, × D_GTR1 / (4 cos θo); not a density, its integral is not 1) exceeds density(),
+  // from one half vector.
+  float cycles_pdf_excess(const Vec3& wo, const Vec3& wi) const {
     if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
     Vec3 m = wo + wi;
     if (!normalize_direction(m)) return 0.0f;
-    return g1_fixed(wo.z) * d_gtr1(m.z, alpha) / (4.0f * wo.z);
+    const float d = d_gtr1(m.z, alpha);
+    const float wo_m = dot(wo, m);
+    const float density = wo_m > 0.0f ? d * m.z / (4.0f * wo_m) : 0.0f;
+    return g1_fixed(wo.z) * d / (4.0f * wo.z) - density;
   }
   float fresnel_at_normal(const Vec3& wo) const {
     return 0.25f * microfacet::cycles_interpolate_fresnel(wo.z, 1.5f, RGB(0.04f)).r;
