@@ -94,6 +94,21 @@ struct Params {
   }
 };
 
+// bsdf_microfacet.h's isotropic terms: Smith's G1 for α² at cos θ, GGX's D for α² at cos θm
+// (in Cycles' tan² form), and GTR1's D for α at cos θm (uniform at α ≥ 1).
+double smith_g1(double cos_n, double a2) {
+  return 2 / (1 + std::sqrt(1 + a2 * (1 - cos_n * cos_n) / (cos_n * cos_n)));
+}
+double d_ggx(double cos_m, double a2) {
+  const double c2 = cos_m * cos_m, tan2 = (1 - c2) / c2;
+  return a2 / (kPiD * c2 * c2 * (a2 + tan2) * (a2 + tan2));
+}
+double d_gtr1(double cos_m, double a) {
+  if (a >= 1) return 1 / kPiD;
+  const double aa = a * a;
+  return (aa - 1) / (kPiD * std::log(aa) * (1 + (aa - 1) * cos_m * cos_m));
+}
+
 // One microfacet closure of bsdf_microfacet.h, evaluated for the local frame (N = z, T = the
 // rotated tangent), returning eval = f·|cos θL|.
 struct Microfacet {
@@ -113,10 +128,8 @@ struct Microfacet {
       const D3 Ht = normd(ht);
       const double cos_ho = dotd(Ht, I), cos_hi = dotd(Ht, L);
       const double a2 = alpha_x * alpha_y;
-      const double ctm2 = Ht.z * Ht.z, tan2 = (1 - ctm2) / ctm2;
-      const double D = a2 / (kPiD * ctm2 * ctm2 * (a2 + tan2) * (a2 + tan2));
-      const double G1o = 2 / (1 + std::sqrt(1 + a2 * (1 - cos_no * cos_no) / (cos_no * cos_no)));
-      const double G1i = 2 / (1 + std::sqrt(1 + a2 * (1 - cos_ni * cos_ni) / (cos_ni * cos_ni)));
+      const double D = d_ggx(Ht.z, a2);
+      const double G1o = smith_g1(cos_no, a2), G1i = smith_g1(cos_ni, a2);
       const double common = D * eta * eta / (cos_no * dotd(ht, ht));
       return c3(G1o * G1i * std::fabs(cos_hi * cos_ho) * common);
     }
@@ -125,21 +138,14 @@ struct Microfacet {
     double D, G1o, G1i;
     if (alpha_x == alpha_y) {
       double a2 = alpha_x * alpha_y;
-      const double c2 = m.z * m.z, tan2 = (1 - c2) / c2;
       if (type == kClearcoat) {
-        const double a = alpha_x;
-        if (a >= 1) {
-          D = 1 / kPiD;
-        } else {
-          const double aa = a * a;
-          D = (aa - 1) / (kPiD * std::log(aa) * (1 + (aa - 1) * m.z * m.z));
-        }
+        D = d_gtr1(m.z, alpha_x);
         a2 = 0.0625;
       } else {
-        D = a2 / (kPiD * c2 * c2 * (a2 + tan2) * (a2 + tan2));
+        D = d_ggx(m.z, a2);
       }
-      G1o = 2 / (1 + std::sqrt(1 + a2 * (1 - cos_no * cos_no) / (cos_no * cos_no)));
-      G1i = 2 / (1 + std::sqrt(1 + a2 * (1 - cos_ni * cos_ni) / (cos_ni * cos_ni)));
+      G1o = smith_g1(cos_no, a2);
+      G1i = smith_g1(cos_ni, a2);
     } else {
       // make_orthonormals_tangent(Z, T): Y = normalize(Z × T), X = Y × Z.
       const D3 Y = normd({-T.y, T.x, 0});
@@ -444,16 +450,6 @@ TEST(CyclesPrincipled, ClearcoatSamplesConvergeWhereCyclesDo) {
   const CyclesPrincipled direct(cycles_principled_inputs(m->params()));
   EXPECT_FALSE(m->sample_f_is_exact());
   const double alpha = p.clearcoat_roughness * p.clearcoat_roughness, a2 = alpha * alpha;
-  const auto ggx_g1 = [](double cos_n, double alpha2) {
-    return 2 / (1 + std::sqrt(1 + alpha2 * (1 - cos_n * cos_n) / (cos_n * cos_n)));
-  };
-  const auto d_gtr1 = [&](double cos_m) {
-    return (a2 - 1) / (kPiD * std::log(a2) * (1 + (a2 - 1) * cos_m * cos_m));
-  };
-  const auto d_ggx = [&](double cos_m) {
-    const double c2 = cos_m * cos_m, t = a2 * c2 + (1 - c2);
-    return a2 / (kPiD * t * t);
-  };
   for (const double cos_o : {0.9, 0.45}) {
     const Vec3 wo(static_cast<float>(std::sqrt(1 - cos_o * cos_o)), 0.0f, static_cast<float>(cos_o));
     const CyclesPrincipled::Closures c = direct.closures(wo, false);
@@ -472,9 +468,9 @@ TEST(CyclesPrincipled, ClearcoatSamplesConvergeWhereCyclesDo) {
         const RGB f = m->f(wo, wi);
         const double eval = avg(C3{f.r, f.g, f.b}) * u;
         const double mixture = m->pdf(wo, wi);
-        const double gtr1 = d_gtr1(h.z) * h.z / (4 * dotd(d3(wo), h));
-        const double drawn = ggx_g1(cos_o, a2) * d_ggx(h.z) / (4 * cos_o);
-        const double reported = ggx_g1(cos_o, 0.0625) * d_gtr1(h.z) / (4 * cos_o);
+        const double gtr1 = d_gtr1(h.z, alpha) * h.z / (4 * dotd(d3(wo), h));
+        const double drawn = smith_g1(cos_o, a2) * d_ggx(h.z, a2) / (4 * cos_o);
+        const double reported = smith_g1(cos_o, 0.0625) * d_gtr1(h.z, alpha) / (4 * cos_o);
         const double weight = (2 * kPiD / kPhi) / kU;
         exact += eval * weight;
         cycles += eval * (mixture + share * (drawn - gtr1)) / (mixture + share * (reported - gtr1)) *
