@@ -168,19 +168,18 @@ RGB PathTracer::lights_along_ray(const Ray& ray, float tmax, bool camera_ray, bo
                                  float bsdf_pdf, const LightReceiver& from) const {
   RGB L(0.0f);
   const auto& lights = scene_.lights();
-  for (uint32_t i : scene_.hittable_lights()) {
-    const Light& light = lights[i];
-    if (camera_ray ? !light.visibility.camera : !light.visibility.use_mis) continue;
+  scene_.hittable_lights().for_each_candidate(ray.origin, ray.dir, tmax, camera_ray,
+                                              [&](uint32_t i) {
     LightHit h;
-    if (!intersect_light(light, ray.origin, ray.dir, tmax, &h)) continue;
-    if (!(h.t > ray.tmin)) continue;  // before a transparent surface: seen by the last segment
+    if (!intersect_light(lights[i], ray.origin, ray.dir, tmax, &h)) return;
+    if (!(h.t > ray.tmin)) return;  // before a transparent surface: seen by the last segment
     if (count_fully) {
       L += h.radiance;
     } else {
       const float light_pdf = h.pdf * scene_.light_sampler().probability(from, i);
       L += h.radiance * power_heuristic(1.0f, bsdf_pdf, 1.0f, light_pdf);
     }
-  }
+  });
   return L;
 }
 

@@ -558,11 +558,10 @@ void Scene::commit(double expected_rays) {
       hi = Vec3(std::max(hi.x, p.x + r), std::max(hi.y, p.y + r), std::max(hi.z, p.z + r));
     }
   bounding_radius_ = hi.x >= lo.x ? std::max(0.5f * length(hi - lo), 1e-3f) : 1.0f;
-  for (size_t i = 0; i < lights_.size(); ++i) {
-    if (lights_[i].is_hittable()) hittable_lights_.push_back(static_cast<uint32_t>(i));
+  hittable_lights_ = HittableLights(lights_);
+  for (size_t i = 0; i < lights_.size(); ++i)
     if (lights_[i].type == LightType::Sun && !lights_[i].is_delta())
       wide_suns_.push_back(static_cast<uint32_t>(i));
-  }
   light_sampler_ = LightSampler(lights_, world_.get(), bounding_radius_);
   const bool emits = std::any_of(materials_.begin(), materials_.end(),
                                  [](const Material& m) { return m.may_emit(); });

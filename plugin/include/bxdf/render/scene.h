@@ -11,6 +11,7 @@
 
 #include "bxdf/bsdf.h"
 #include "bxdf/render/environment.h"
+#include "bxdf/render/hittable_lights.h"
 #include "bxdf/render/light_sampler.h"
 #include "bxdf/render/lights.h"
 #include "bxdf/render/material.h"
@@ -112,9 +113,9 @@ class Scene {
   const std::vector<Light>& lights() const { return lights_; }
   const Environment& world() const { return *world_; }
   const LightSampler& light_sampler() const { return light_sampler_; }
-  // Indices into lights() of the lights rays can hit (point/spot with a radius, area) and of
-  // suns with an angle (found by escaped rays).
-  const std::vector<uint32_t>& hittable_lights() const { return hittable_lights_; }
+  // The lights rays can hit (point/spot with a radius, area), and the indices into lights() of
+  // the suns with an angle (found by escaped rays).
+  const HittableLights& hittable_lights() const { return hittable_lights_; }
   const std::vector<uint32_t>& wide_suns() const { return wide_suns_; }
   float bounding_radius() const { return bounding_radius_; }
   // Whether a ray can bring light back by itself, before any shading where it lands: the world
@@ -239,7 +240,8 @@ class Scene {
   std::vector<StoredInstance> instances_;
   std::vector<Light> lights_;
   std::vector<int> mesh_area_light_, instance_area_light_;
-  std::vector<uint32_t> hittable_lights_, wide_suns_;
+  HittableLights hittable_lights_;
+  std::vector<uint32_t> wide_suns_;
   std::shared_ptr<const Environment> world_;  // never null; may be shared with other scenes
   LightSampler light_sampler_;
   float bounding_radius_ = 0.0f;
