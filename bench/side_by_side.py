@@ -44,7 +44,9 @@ def parse_args():
     p.add_argument("--threads", type=int, default=2, help="threads for both engines")
     p.add_argument("--reference-spp", type=int, default=1024,
                    help="samples of each engine's reference render")
-    p.add_argument("--repeats", type=int, default=3, help="renders per engine and sample count")
+    p.add_argument("--repeats", type=int, nargs="+", default=[3],
+                   help="renders per engine and sample count: one number for every --spp, or "
+                        "one per --spp value (e.g. 96 24 for 64 256: the same samples per row)")
     p.add_argument("--first-seed", type=int, default=0,
                    help="seeds first-seed .. first-seed + repeats - 1 (the same every run unless "
                         "changed: a heavy-tailed error needs other seeds to be checked)")
@@ -52,9 +54,16 @@ def parse_args():
                    help="resolution (default: the scene's)")
     p.add_argument("--json", default=None, help="also write the results to this file")
     args = p.parse_args(argv)
-    for name in ("threads", "reference_spp", "repeats"):
+    for name in ("threads", "reference_spp"):
         if getattr(args, name) < 1:
             p.error(f"--{name.replace('_', '-')} must be at least 1, got {getattr(args, name)}")
+    if any(r < 1 for r in args.repeats):
+        p.error(f"--repeats values must be at least 1, got {args.repeats}")
+    if len(args.repeats) == 1:
+        args.repeats = args.repeats * len(args.spp)
+    elif len(args.repeats) != len(args.spp):
+        p.error(f"--repeats takes one number or one per --spp value ({len(args.spp)}), "
+                f"got {args.repeats}")
     if args.first_seed < 0:
         p.error(f"--first-seed must be at least 0, got {args.first_seed}")
     if any(s < 1 for s in args.spp):
@@ -170,23 +179,24 @@ def main():
 
     _, reference = render_references(spec, args.reference_spp, args.threads, work)
     width, height = spec.resolution
+    renders = ", ".join(f"{n} at {spp} spp (seeds {args.first_seed}-{args.first_seed + n - 1})"
+                        for spp, n in zip(args.spp, args.repeats))
     print(f"side_by_side: scene {args.scene} ({width}x{height}, max_bounces {spec.max_bounces}), "
-          f"{args.threads} threads each, {args.repeats} interleaved renders per engine and sample "
-          f"count (seeds {args.first_seed}-{args.first_seed + args.repeats - 1}), reference = mean "
-          f"of both engines at {args.reference_spp} spp; "
+          f"{args.threads} threads each, interleaved renders per engine: {renders}; reference = "
+          f"mean of both engines at {args.reference_spp} spp; "
           f"materials: {', '.join(f'{k} {v}' for k, v in labels.items())}")
     rows = []
-    for spp in args.spp:
+    for spp, repeats in zip(args.spp, args.repeats):
         seconds = {e: [] for e in ENGINES}
         cpu_seconds = {e: [] for e in ENGINES}
         mse = {e: [] for e in ENGINES}
-        for r in range(args.first_seed, args.first_seed + args.repeats):
+        for r in range(args.first_seed, args.first_seed + repeats):
             for engine in ENGINES:
                 t, cpu, image = render(engine, spec, spp, r, args.threads, out(f"{engine}_{spp}_{r}"))
                 seconds[engine].append(t)
                 cpu_seconds[engine].append(cpu)
                 mse[engine].append(float(np.mean((image - reference) ** 2)))
-        row = {"spp": spp}
+        row = {"spp": spp, "renders": repeats}
         for engine in ENGINES:
             row[engine] = {"median_seconds": statistics.median(seconds[engine]),
                            "seconds": seconds[engine],
