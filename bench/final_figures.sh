@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The speed figures of issue #14, for an otherwise idle machine (takes about an hour):
+# The speed figures of issue #14, for an otherwise idle machine (takes about 25 minutes with
+# REFERENCE_SPP=4096):
 #   bash bench/final_figures.sh [BUILD]        (after `make build`)
 # 1. bench/side_by_side.py on every harness scene with global illumination (max_bounces > 0 in
 #    compare/scenes.py), 2 threads each, 64 and 256 spp, interleaved renders per engine (a

@@ -4,8 +4,9 @@
 // area_light_room's render) although a ray finds one of them only now and then. Here the area
 // lights are tested four at a time with vector operations and no division: a ray that does not
 // cross a light's plane in front of it before tmax, or crosses it outside the light's bounding
-// rectangle, is left out, and intersect_light() makes the exact test (and finds the radiance and density) for
-// the few that are left. Point and spot lights with a radius are always left to it.
+// rectangle, is left out, and intersect_light() makes the exact test (and finds the radiance
+// and density) for the few that are left. Point and spot lights with a radius are always left
+// to it.
 #pragma once
 
 #include <cstdint>
