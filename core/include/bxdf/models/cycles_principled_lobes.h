@@ -101,21 +101,28 @@ struct GTR1Clearcoat {
     constexpr float kAlpha2 = 0.0625f;
     return 2.0f / (1.0f + safe_sqrt(1.0f + kAlpha2 * (1.0f - cos_n * cos_n) / (cos_n * cos_n)));
   }
+  // The half vector of a pair above the surface; false (f and every pdf 0) for any other.
+  static bool half_vector(const Vec3& wo, const Vec3& wi, Vec3* m) {
+    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return false;
+    *m = wo + wi;
+    return normalize_direction(*m);
+  }
+  // density() at half vector m, where D is d: D cos θm / (4 wo·m).
+  static float density_at(const Vec3& wo, const Vec3& m, float d) {
+    const float wo_m = dot(wo, m);
+    return wo_m > 0.0f ? d * m.z / (4.0f * wo_m) : 0.0f;
+  }
   float f(const Vec3& wo, const Vec3& wi) const {
-    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
-    Vec3 m = wo + wi;
-    if (!normalize_direction(m)) return 0.0f;
+    Vec3 m;
+    if (!half_vector(wo, wi, &m)) return 0.0f;
     const float d = d_gtr1(m.z, alpha);
     const float g = g1_fixed(wo.z) * g1_fixed(wi.z);
     const float fresnel = microfacet::cycles_interpolate_fresnel(dot(wi, m), 1.5f, RGB(0.04f)).r;
     return 0.25f * fresnel * d * g / (4.0f * wo.z * wi.z);
   }
   float density(const Vec3& wo, const Vec3& wi) const {
-    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
-    Vec3 m = wo + wi;
-    if (!normalize_direction(m)) return 0.0f;
-    const float wo_m = dot(wo, m);
-    return wo_m > 0.0f ? d_gtr1(m.z, alpha) * m.z / (4.0f * wo_m) : 0.0f;
+    Vec3 m;
+    return half_vector(wo, wi, &m) ? density_at(wo, m, d_gtr1(m.z, alpha)) : 0.0f;
   }
   bool sample(const Vec3& wo, Point2 u, Vec3* wi) const {
     // Inverting the CDF of D cos θm: cos²θm = (1 − α^(2(1 − u)))/(1 − α²); α = 1 is cosine.
@@ -140,13 +147,10 @@ struct GTR1Clearcoat {
   // α² 0.0625, × D_GTR1 / (4 cos θo); not a density, its integral is not 1) exceeds density(),
   // from one half vector.
   float cycles_pdf_excess(const Vec3& wo, const Vec3& wi) const {
-    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
-    Vec3 m = wo + wi;
-    if (!normalize_direction(m)) return 0.0f;
+    Vec3 m;
+    if (!half_vector(wo, wi, &m)) return 0.0f;
     const float d = d_gtr1(m.z, alpha);
-    const float wo_m = dot(wo, m);
-    const float density = wo_m > 0.0f ? d * m.z / (4.0f * wo_m) : 0.0f;
-    return g1_fixed(wo.z) * d / (4.0f * wo.z) - density;
+    return g1_fixed(wo.z) * d / (4.0f * wo.z) - density_at(wo, m, d);
   }
   float fresnel_at_normal(const Vec3& wo) const {
     return 0.25f * microfacet::cycles_interpolate_fresnel(wo.z, 1.5f, RGB(0.04f)).r;
