@@ -179,7 +179,7 @@ class TorranceSparrow final : public BxDFImpl<TorranceSparrow<Distribution>> {
     const RGB f = r_ * fr * (d * G_as<S>(wo, wi, wh) / (4.0f * cos_i * cos_o));
     // One condition per select (GCC 12 does not vectorise some && chains of mixed origin).
     const auto keep = [&](float v) {
-      v = half_vector_ok(l2) ? v : 0.0f;
+      v = is_direction_length_squared(l2) ? v : 0.0f;
       v = cos_o > 0.0f ? v : 0.0f;
       v = cos_i > 0.0f ? v : 0.0f;
       return d != 0.0f ? v : 0.0f;
@@ -193,15 +193,12 @@ class TorranceSparrow final : public BxDFImpl<TorranceSparrow<Distribution>> {
     const float wo_h = dot(wo, wh);
     // The Jacobian of ωi = reflect(ωo, ωh) is 1/(4 ωo·ωh).
     const float pdf = distribution_.pdf_wh(wo, wh) / (4.0f * wo_h);
-    return half_vector_ok(l2) ? (wo_h > 0.0f ? pdf : 0.0f) : 0.0f;
+    return is_direction_length_squared(l2) ? (wo_h > 0.0f ? pdf : 0.0f) : 0.0f;
   }
   // normalize(h = wo + wi) as normalize_direction() computes it, with a select instead of a
-  // branch: +z where h is degenerate (half_vector_ok false).
-  BXDF_KERNEL static bool half_vector_ok(float l2) {
-    return is_direction_length_squared(l2);
-  }
+  // branch: +z where h is degenerate (is_direction_length_squared(l2) false).
   BXDF_KERNEL static Vec3 half_vector(const Vec3& h, float l2) {
-    const bool ok = half_vector_ok(l2);
+    const bool ok = is_direction_length_squared(l2);
     const float inv = normalizing_scale(l2);
     return {ok ? h.x * inv : 0.0f, ok ? h.y * inv : 0.0f, ok ? h.z * inv : 1.0f};
   }
