@@ -38,23 +38,31 @@ inline CanonicalPair canonical_pair(const Vec3& wo, const Vec3& wi, float ior) {
   return {Vec3(wo.x, wo.y, -wo.z), Vec3(wi.x, wi.y, -wi.z), 1.0f / ior, true};
 }
 
+// The unit half vector of a reflection pair; false (f and pdf 0) unless both directions are
+// above the surface and their sum can be normalised.
+inline bool reflection_half_vector(const Vec3& wo, const Vec3& wi, Vec3* wh) {
+  if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return false;
+  *wh = wo + wi;
+  return normalize_direction(*wh);
+}
+
 template <class Distribution>
 struct ReflectionLobe {
   Distribution distribution;
 
   float f(const Vec3& wo, const Vec3& wi) const {
     Vec3 wh;
-    return half_vector(wo, wi, &wh) ? f_at(wo, wi, wh) : 0.0f;
+    return reflection_half_vector(wo, wi, &wh) ? f_at(wo, wi, wh) : 0.0f;
   }
   float pdf(const Vec3& wo, const Vec3& wi) const {
     Vec3 wh;
-    return half_vector(wo, wi, &wh) ? pdf_at(wo, wh) : 0.0f;
+    return reflection_half_vector(wo, wi, &wh) ? pdf_at(wo, wh) : 0.0f;
   }
   // f and pdf at once, the same bits: one half vector, one D(ωh) (and for GGX one G1(ωo)),
   // which the compiler shares between the two inlined formulas.
   float f_pdf(const Vec3& wo, const Vec3& wi, float* pdf) const {
     Vec3 wh;
-    if (!half_vector(wo, wi, &wh)) {
+    if (!reflection_half_vector(wo, wi, &wh)) {
       *pdf = 0.0f;
       return 0.0f;
     }
@@ -70,12 +78,6 @@ struct ReflectionLobe {
   }
 
  private:
-  // The unit half vector of a pair that is above the surface on both sides.
-  static bool half_vector(const Vec3& wo, const Vec3& wi, Vec3* wh) {
-    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return false;
-    *wh = wo + wi;
-    return normalize_direction(*wh);
-  }
   float f_at(const Vec3& wo, const Vec3& wi, const Vec3& wh) const {
     const float d = distribution.D(wh);
     if (d == 0.0f) return 0.0f;

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "bxdf/math.h"
+#include "bxdf/microfacet/cycles_lobes.h"
 #include "bxdf/microfacet/ggx.h"
 #include "bxdf/microfacet/multiscatter_ggx.h"
 #include "bxdf/microfacet/refraction_cover.h"
@@ -56,18 +57,16 @@ struct GGXFresnelReflection {
   RGB cspec0{1.0f};
 
   RGB f(const Vec3& wo, const Vec3& wi) const {
-    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return RGB(0.0f);
-    Vec3 m = wo + wi;
-    if (!normalize_direction(m)) return RGB(0.0f);
+    Vec3 m;
+    if (!reflection_half_vector(wo, wi, &m)) return RGB(0.0f);
     const float d = ggx.D(m);
     const float g = ggx.G1(wo) * ggx.G1(wi);
     return microfacet::cycles_interpolate_fresnel(dot(wi, m), eta, cspec0) *
            (d * g / (4.0f * wo.z * wi.z));
   }
   float density(const Vec3& wo, const Vec3& wi) const {
-    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return 0.0f;
-    Vec3 m = wo + wi;
-    if (!normalize_direction(m)) return 0.0f;
+    Vec3 m;
+    if (!reflection_half_vector(wo, wi, &m)) return 0.0f;
     const float wo_m = dot(wo, m);
     return wo_m > 0.0f ? ggx.pdf_wh(wo, m) / (4.0f * wo_m) : 0.0f;
   }
@@ -101,12 +100,6 @@ struct GTR1Clearcoat {
     constexpr float kAlpha2 = 0.0625f;
     return 2.0f / (1.0f + safe_sqrt(1.0f + kAlpha2 * (1.0f - cos_n * cos_n) / (cos_n * cos_n)));
   }
-  // The half vector of a pair above the surface; false (f and every pdf 0) for any other.
-  static bool half_vector(const Vec3& wo, const Vec3& wi, Vec3* m) {
-    if (!(wo.z > 0.0f) || !(wi.z > 0.0f)) return false;
-    *m = wo + wi;
-    return normalize_direction(*m);
-  }
   // density() at half vector m, where D is d: D cos θm / (4 wo·m).
   static float density_at(const Vec3& wo, const Vec3& m, float d) {
     const float wo_m = dot(wo, m);
@@ -114,7 +107,7 @@ struct GTR1Clearcoat {
   }
   float f(const Vec3& wo, const Vec3& wi) const {
     Vec3 m;
-    if (!half_vector(wo, wi, &m)) return 0.0f;
+    if (!reflection_half_vector(wo, wi, &m)) return 0.0f;
     const float d = d_gtr1(m.z, alpha);
     const float g = g1_fixed(wo.z) * g1_fixed(wi.z);
     const float fresnel = microfacet::cycles_interpolate_fresnel(dot(wi, m), 1.5f, RGB(0.04f)).r;
@@ -122,7 +115,7 @@ struct GTR1Clearcoat {
   }
   float density(const Vec3& wo, const Vec3& wi) const {
     Vec3 m;
-    return half_vector(wo, wi, &m) ? density_at(wo, m, d_gtr1(m.z, alpha)) : 0.0f;
+    return reflection_half_vector(wo, wi, &m) ? density_at(wo, m, d_gtr1(m.z, alpha)) : 0.0f;
   }
   bool sample(const Vec3& wo, Point2 u, Vec3* wi) const {
     // Inverting the CDF of D cos θm: cos²θm = (1 − α^(2(1 − u)))/(1 − α²); α = 1 is cosine.
@@ -148,7 +141,7 @@ struct GTR1Clearcoat {
   // from one half vector.
   float cycles_pdf_excess(const Vec3& wo, const Vec3& wi) const {
     Vec3 m;
-    if (!half_vector(wo, wi, &m)) return 0.0f;
+    if (!reflection_half_vector(wo, wi, &m)) return 0.0f;
     const float d = d_gtr1(m.z, alpha);
     return g1_fixed(wo.z) * d / (4.0f * wo.z) - density_at(wo, m, d);
   }
