@@ -17,7 +17,10 @@ samples in millions hold much of it, so tens of renders leave the engines' ratio
 10-20%; hundreds of N-sample renders and thousands of one-sample renders (each engine's pixels
 then have as many samples as in the N-sample renders together) are what separates a per-sample
 difference from a stratification one. Also reports how many one-sample values exceed 10, 30 and
-100 (the tails) and the mean images' difference (their bias against each other, plus noise).
+100 (the tails), the per-sample variance of the values clipped at those thresholds (the body of
+the distribution, which a few extreme samples cannot sway: equal bodies and equal tail counts
+mean the engines draw the same distribution, and a difference in V1 is the extreme tail), and
+the mean images' difference (their bias against each other, plus noise).
 """
 import argparse
 import os
@@ -63,11 +66,17 @@ class Moments:
         self.count = 0
         self.sum = self.sum_sq = None
         self.tails = [0] * len(TAIL_THRESHOLDS)
+        self.clipped = [None] * len(TAIL_THRESHOLDS)  # Moments of the values clipped there
 
-    def add(self, image):
+    def add(self, image, clip=True):
         import numpy as np
 
         x = np.asarray(image[..., :3], dtype=np.float64)
+        if clip:
+            for i, t in enumerate(TAIL_THRESHOLDS):
+                if self.clipped[i] is None:
+                    self.clipped[i] = Moments()
+                self.clipped[i].add(np.minimum(x, t), clip=False)
         if self.sum is None:
             self.sum, self.sum_sq = np.zeros_like(x), np.zeros_like(x)
         self.count += 1
@@ -99,7 +108,7 @@ def main():
             for e in engines:
                 image = side_by_side.render(e, spec, spp, seed, args.threads,
                                             os.path.join(work, f"{e}.exr"))[2]
-                moments[e].add(image)
+                moments[e].add(image, clip=spp == 1)
             seed += 1
     os.rmdir(work)
 
@@ -114,6 +123,11 @@ def main():
         print(f"  {e:<9} {v1[e]:>10.4g} {v1[e] / args.spp:>10.4g} {vn[e]:>10.4g} "
               f"{vn[e] / (v1[e] / args.spp):>10.3f}   {', '.join(map(str, single[e].tails))}")
     a, b = engines
+    clipped = {e: [float(m.variance().mean()) for m in single[e].clipped] for e in engines}
+    print("  per-sample variance of the one-sample values clipped at "
+          + ", ".join(f"{t:g}" for t in TAIL_THRESHOLDS) + f" ({a}/{b}): "
+          + ", ".join(f"{clipped[a][i]:.4g}/{clipped[b][i]:.4g} = {clipped[a][i] / clipped[b][i]:.3f}"
+                      for i in range(len(TAIL_THRESHOLDS))))
     difference = many[a].mean() - many[b].mean()
     print(f"  {a}/{b}: per-sample variance {v1[a] / v1[b]:.3f}, variance at {args.spp} spp "
           f"{vn[a] / vn[b]:.3f}; the mean images' squared difference "
