@@ -83,6 +83,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
                          " is not callable; expected a function (done, total, image_or_None) -> bool, or None");
   // Settings the renderer would refuse are refused here, before any thread starts.
   { render::Camera check(camera, settings.width, settings.height); }
+  const render::PixelRect rect = render::rendered_rect(settings);
 
   Channel channel;
   std::atomic<bool> cancel{false};
@@ -183,7 +184,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
       continue;
     }
     try {
-      py::object image = pass_ready ? py::object(image_array(pass_image.data(), settings.width, settings.height, bottom_up))
+      py::object image = pass_ready ? py::object(image_array(pass_image.data(), rect.width(), rect.height(), bottom_up))
                                     : py::object(py::none());
       last_report = std::chrono::steady_clock::now();
       py::object keep_going = on_progress(done, total, image);
@@ -271,7 +272,10 @@ for the partial images too.
 automatic: about samples/8, at most 16, with partial images, else one pass), ``russian_roulette_depth`` (1: paths may be ended at random once they have
 scattered this many + 1 times; Cycles' Min Light Bounces + 1), ``transparent_max_bounces`` (8:
 Cycles' setting; passes through Transparent BSDFs are not bounces, and the surface after this
-many + 1 passes adds only its emission), ``transparent_background`` (False).
+many + 1 passes adds only its emission), ``transparent_background`` (False), ``region``
+(None: Blender's Render Region, ``(x_min, y_min, x_max, y_max)`` pixels with rows counted from the
+top, maximum exclusive: only those pixels are rendered and the image is the region's size, each
+pixel as the whole image's render gives it).
 
 ``on_progress(done, total, image)`` is called on the calling thread, holding the GIL, while the
 render runs on C++ threads: ``done``/``total`` count tiles over the whole render (reported at most

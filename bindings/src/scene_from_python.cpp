@@ -696,7 +696,7 @@ void apply_render_settings(const py::handle& settings, render::RenderSettings& s
   static const char* const kKnown =
       "'samples', 'max_bounces', 'pixel_filter', 'filter_width', 'threads', 'seed', 'tile_size', "
       "'samples_per_pass', 'russian_roulette_depth', 'transparent_max_bounces', "
-      "'transparent_background'";
+      "'transparent_background', 'region'";
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
     const std::string path = root + "['" + key + "']";
@@ -713,6 +713,20 @@ void apply_render_settings(const py::handle& settings, render::RenderSettings& s
     else if (key == "transparent_background") {
       if (!PyBool_Check(v.ptr())) refuse(path, short_repr(v) + " is not a bool; expected True or False");
       s.transparent_background = v.cast<bool>();
+    } else if (key == "region") {
+      // Checked against the image's size where the render starts (render::rendered_rect).
+      if (v.is_none()) {
+        s.region = render::PixelRect{};
+        continue;
+      }
+      const char* kShape = "; expected None or (x_min, y_min, x_max, y_max), 4 integers";
+      if (!py::isinstance<py::sequence>(v) || py::isinstance<py::str>(v) || py::len(v) != 4)
+        refuse(path, short_repr(v) + " is not 4 integers" + std::string(kShape));
+      const py::sequence seq = py::reinterpret_borrow<py::sequence>(v);
+      int c[4];
+      for (int i = 0; i < 4; ++i)
+        c[i] = static_cast<int>(integer(seq[size_t(i)], path + "[" + std::to_string(i) + "]", 0, 65536));
+      s.region = render::PixelRect{c[0], c[1], c[2], c[3]};
     } else if (key == "pixel_filter") {
       const std::string name = lower(text(v, path, render::kFilterNames));
       try {

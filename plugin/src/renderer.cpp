@@ -37,6 +37,7 @@ void check_settings(const RenderSettings& s) {
   if (s.threads < 0) bad("threads", s.threads, "[0, inf) (0 = all cores)");
   if (s.tile_size < 1 || s.tile_size > 4096) bad("tile_size", s.tile_size, "[1, 4096]");
   if (s.samples_per_pass < 0) bad("samples_per_pass", s.samples_per_pass, "[0, inf)");
+  rendered_rect(s);
 }
 
 // Automatic passes take about an eighth of the samples, but no more than this many, so that a
@@ -56,6 +57,20 @@ double thread_cpu_seconds() {
 
 }  // namespace
 
+PixelRect rendered_rect(const RenderSettings& s) {
+  const PixelRect& r = s.region;
+  if (r.x0 == 0 && r.y0 == 0 && r.x1 == 0 && r.y1 == 0) return {0, 0, s.width, s.height};
+  if (!(0 <= r.x0 && r.x0 < r.x1 && r.x1 <= s.width && 0 <= r.y0 && r.y0 < r.y1 &&
+        r.y1 <= s.height))
+    throw ParameterError("render setting 'region' is (" + std::to_string(r.x0) + ", " +
+                         std::to_string(r.y0) + ", " + std::to_string(r.x1) + ", " +
+                         std::to_string(r.y1) + "); valid: (x_min, y_min, x_max, y_max) with 0 <= "
+                         "x_min < x_max <= width " + std::to_string(s.width) +
+                         " and 0 <= y_min < y_max <= height " + std::to_string(s.height) +
+                         " (rows from the top)");
+  return r;
+}
+
 Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
             const RenderSettings& settings, const RenderCallbacks& callbacks,
             RenderStats* stats_out) {
@@ -70,13 +85,16 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   integrator_settings.transparent_max_bounces = settings.transparent_max_bounces;
   integrator_settings.transparent_background = settings.transparent_background;
   const PathTracer tracer(scene, integrator_settings);
-  Film film(settings.width, settings.height);
+  // The film covers the rendered rectangle; the camera, the pixel seeds and the tiles' pixels
+  // keep the whole image's coordinates, so a region's pixels are the whole render's.
+  const PixelRect rect = rendered_rect(settings);
+  Film film(rect.width(), rect.height());
 
   std::vector<Tile> tiles;
-  for (int y = 0; y < settings.height; y += settings.tile_size)
-    for (int x = 0; x < settings.width; x += settings.tile_size)
-      tiles.push_back({x, y, std::min(x + settings.tile_size, settings.width),
-                       std::min(y + settings.tile_size, settings.height)});
+  for (int y = rect.y0; y < rect.y1; y += settings.tile_size)
+    for (int x = rect.x0; x < rect.x1; x += settings.tile_size)
+      tiles.push_back({x, y, std::min(x + settings.tile_size, rect.x1),
+                       std::min(y + settings.tile_size, rect.y1)});
   const int spp = settings.samples_per_pixel;
   // Passes exist for the partial images on_pass shows; without it the render is one pass, as
   // each pass ends in a wait for the slowest tile (8 passes cost 5-7% of a 64-spp harness
@@ -133,7 +151,7 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
       for (int k = 0; k < batch.size(); ++k) {
         const PathBatch::Sample& c = batch.sample(k);
         const PathResult& r = batch.result(k);
-        film.add_sample(c.x, c.y, r.radiance, std::max(r.alpha, background_alpha));
+        film.add_sample(c.x - rect.x0, c.y - rect.y0, r.radiance, std::max(r.alpha, background_alpha));
       }
       samples += uint64_t(batch.size());
       batch.clear();

@@ -245,8 +245,42 @@ TEST(Renderer, RefusesBadSettingsByName) {
   s = small_settings();
   s.filter_width = 0.0f;
   EXPECT_NE(message(s).find("filter width"), std::string::npos);
+  s = small_settings();
+  s.region = PixelRect{4, 2, 4, 10};  // empty
+  EXPECT_NE(message(s).find("'region' is (4, 2, 4, 10); valid: (x_min, y_min, x_max, y_max) with "
+                            "0 <= x_min < x_max <= width 24 and 0 <= y_min < y_max <= height 20"),
+            std::string::npos);
+  s.region = PixelRect{0, 0, 24, 21};  // past the bottom
+  EXPECT_NE(message(s).find("'region' is (0, 0, 24, 21)"), std::string::npos);
   Scene uncommitted;
   EXPECT_THROW(render_scene(uncommitted, CameraSettings(), small_settings()), ParameterError);
+}
+
+// Blender's Render Region: a film of the region's size whose pixels are the whole render's, bit
+// for bit (the camera, the pixel seeds and the tiles keep the whole image's coordinates).
+TEST(Renderer, ARegionRendersItsPixelsAsTheWholeImageDoes) {
+  SmallScene sc;
+  const CameraSettings camera = camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0));
+  RenderSettings s = small_settings();
+  const Film whole = render_scene(sc.scene, camera, s);
+  s.region = PixelRect{5, 3, 19, 17};
+  RenderStats stats;
+  const Film part = render_scene(sc.scene, camera, s, {}, &stats);
+  ASSERT_EQ(part.width(), 14);
+  ASSERT_EQ(part.height(), 14);
+  EXPECT_EQ(stats.camera_samples, 14u * 14u * 8u);  // only the region's samples were traced
+  float a[4], b[4];
+  double sum = 0.0;
+  for (int y = 0; y < part.height(); ++y)
+    for (int x = 0; x < part.width(); ++x) {
+      part.pixel(x, y, a);
+      whole.pixel(x + 5, y + 3, b);
+      for (int c = 0; c < 4; ++c) EXPECT_EQ(a[c], b[c]) << "pixel " << x << ", " << y;
+      sum += a[0];
+    }
+  EXPECT_GT(sum, 0.0);
+  s.region = PixelRect{0, 0, 24, 20};  // the whole image as a region
+  EXPECT_EQ(render_scene(sc.scene, camera, s).rgba(), whole.rgba());
 }
 
 TEST(Renderer, SceneRefusesBadMeshesByArrayAndEntry) {

@@ -602,6 +602,13 @@ BAD_SETTINGS = [
     ({"threads": -2}, r"settings\['threads'\]"),
     ({"seed": "x"}, r"settings\['seed'\]: 'x' is not an integer"),
     ({"spp": 4}, r"settings\['spp'\]: is not a setting; expected one of 'samples'"),
+    ({"region": (0, 0, 4)}, r"settings\['region'\]: \(0, 0, 4\) is not 4 integers; expected None or"),
+    ({"region": "0 0 4 4"}, r"settings\['region'\]: '0 0 4 4' is not 4 integers"),
+    ({"region": (0, 0, 4.5, 4)}, r"settings\['region'\]\[2\]: 4.5 is not an integer"),
+    ({"region": (4, 0, 4, 8)}, r"render setting 'region' is \(4, 0, 4, 8\); valid: \(x_min, y_min, "
+                               r"x_max, y_max\) with 0 <= x_min < x_max <= width 24 and 0 <= y_min < "
+                               r"y_max <= height 24 \(rows from the top\)"),
+    ({"region": (0, 0, 25, 8)}, r"render setting 'region' is \(0, 0, 25, 8\)"),
     ([1, 2], r"settings: is a list; expected a dict"),
 ]
 
@@ -610,6 +617,31 @@ BAD_SETTINGS = [
 def test_bad_settings_name_the_field(settings, message):
     with pytest.raises(ValueError, match=message):
         bxdf.render(good_scene(), settings)
+
+
+def test_a_region_renders_its_pixels_as_the_whole_image_does():
+    # Blender's Render Region: only those pixels, each the whole render's (same seeds, same
+    # camera rays), in an image of the region's size; the partial images are the region's too.
+    material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.5}}
+    scene = scene_dict(material)
+    scene["world"] = {"color": [0.2, 0.3, 0.4]}
+    settings = dict(BIG, samples=4, max_bounces=2, pixel_filter="gaussian", tile_size=8)
+    whole = bxdf.render(scene, settings)
+    region = (3, 5, 21, 16)  # x_min, y_min (rows from the top), x_max, y_max: exclusive
+    partial = []
+    part = bxdf.render(scene, dict(settings, region=region),
+                       lambda done, total, img: partial.append((total, img)))
+    assert part.shape == (11, 18, 4)
+    np.testing.assert_array_equal(part, whole[5:16, 3:21])
+    assert part[..., :3].max() > 0.01 and not np.array_equal(part[0], part[-1])
+    np.testing.assert_array_equal(
+        bxdf.render(scene, dict(settings, region=region), bottom_up=True), part[::-1])
+    images = [img for _, img in partial if img is not None]
+    assert images and all(img.shape == part.shape for img in images)
+    assert {total for total, _ in partial} == {4 * 3 * 2}  # 4 passes of 3 x 2 tiles of 8
+    # The whole image as a region, and None, are the whole render.
+    np.testing.assert_array_equal(bxdf.render(scene, dict(settings, region=(0, 0, SIZE, SIZE))), whole)
+    np.testing.assert_array_equal(bxdf.render(scene, dict(settings, region=None)), whole)
 
 
 def test_filter_spellings_of_the_addon_accepted():

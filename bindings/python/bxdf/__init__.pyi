@@ -147,6 +147,7 @@ class RenderSettingsDict(TypedDict, total=False):
     samples_per_pass: int
     russian_roulette_depth: int
     transparent_background: bool
+    region: tuple[int, int, int, int] | None  # x_min, y_min (rows from the top), x_max, y_max
 
 # on_progress(done_tiles, total_tiles, partial_image_or_None) -> False to cancel
 ProgressCallback = Callable[[int, int, F32 | None], bool | None]

@@ -15,8 +15,20 @@
 
 namespace bxdf::render {
 
+// A rectangle of pixels: columns [x0, x1), rows [y0, y1) counted from the top of the image.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+};
+
 struct RenderSettings {
   int width = 64, height = 64;
+  // Blender's Render Region: only these pixels are rendered, into a film (and an image) of the
+  // region's size, each pixel as the whole image's render has it. Empty (the default): the
+  // whole image.
+  PixelRect region;
   int samples_per_pixel = 16;
   int max_bounces = 8;
   int russian_roulette_depth = 1;   // Cycles' Min Light Bounces + 1 (integrator.h)
@@ -65,6 +77,10 @@ struct RenderStats {
   // the time other processes took the cores away (steadier than wall time on a shared machine).
   double tile_cpu_seconds = 0.0;
 };
+
+// The pixels a render with these settings covers: the region, or the whole image when it is
+// empty. Throws ParameterError for a region that is not inside the image.
+PixelRect rendered_rect(const RenderSettings& settings);
 
 // Renders `scene` (committed) through `camera`. Throws ParameterError for bad settings.
 // On cancel, returns the film with the passes finished so far and stats.cancelled = true.
