@@ -115,6 +115,10 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
         scene = depsgraph.scene
         report = render_report.Report("preview" if purpose == "preview" else "render", scene.name)
         width, height = export.resolution(scene)
+        # With a Render Region Blender's result holds only the region: only it is rendered.
+        region = renderer.render_region(scene, width, height) if purpose == "final" else None
+        if region is not None:
+            width, height = region[2] - region[0], region[3] - region[1]
         result = self.begin_result(0, 0, width, height)
         cancelled = False
         try:
@@ -150,6 +154,8 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
 
             settings = renderer.settings_dict(scene.bxdf_lab_render, purpose,
                                               renderer.cycles_light_paths(scene))
+            if region is not None:
+                settings["region"] = region
             # Blender without a window (blender -b) shows no partial result: the passes' images
             # (a copy, a flip and foreach_set each, ~1 ms at 128², competing with the render
             # threads) would be made for nobody. Cycles updates none there either.

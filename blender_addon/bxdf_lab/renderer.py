@@ -6,6 +6,8 @@ it is) and the render settings, and gets back a linear RGBA float32 image with r
 `on_progress(done, total, image)` returning False to stop.
 """
 
+import numpy as np
+
 from . import dependency
 
 
@@ -64,6 +66,22 @@ def settings_dict(render_settings, purpose="final", light_paths=None):
         settings["max_bounces"] = min(s.max_bounces, QUICK_MAX_BOUNCES)
         settings["samples_per_pass"] = 1
     return settings
+
+
+def render_region(scene, width, height):
+    """Blender's Render Region (Output Properties > Format > Render Region; Ctrl+B in the camera
+    view) as bxdf.render's `region` for a `width` x `height` image, or None when it is off.
+    Blender renders columns [min_x·width, max_x·width) and rows [min_y·height, max_y·height)
+    counted from the bottom, each bound truncated from a single-precision product
+    (render_init_from_main); `region` counts rows from the top."""
+    r = scene.render
+    if not r.use_border:
+        return None
+    def bound(fraction, size):
+        return int(np.float32(fraction) * np.float32(size))
+    x0, x1 = bound(r.border_min_x, width), bound(r.border_max_x, width)
+    y0, y1 = bound(r.border_min_y, height), bound(r.border_max_y, height)
+    return (x0, height - y1, x1, height - y0)
 
 
 def render(scene_data, settings, on_progress, partial_images=True):

@@ -47,9 +47,10 @@ def _render(scene, engine_id, path):
     scene.render.filepath = path
     bpy.ops.render.render(write_still=True)
     image = bpy.data.images.load(path)
-    pixels = np.empty(SIZE * SIZE * 4, dtype=np.float32)
+    width, height = image.size
+    pixels = np.empty(width * height * 4, dtype=np.float32)
     image.pixels.foreach_get(pixels)
-    return pixels.reshape(SIZE, SIZE, 4)
+    return pixels.reshape(height, width, 4)  # rows bottom-up
 
 
 @pytest.fixture
@@ -89,6 +90,44 @@ def test_exact_cycles_set_up_renders_like_bxdf_lab(model_name, params, material,
     assert ours[..., :3].max() > 0.05
     # delta sun, direct light only, pixel centres: both are noise-free
     np.testing.assert_allclose(ours[..., :3], cycles[..., :3], rtol=5e-3, atol=1e-4)
+
+
+@pytest.mark.parametrize("crop", [True, False], ids=["cropped", "in-frame"])
+def test_a_render_region_renders_only_its_pixels_as_cycles_does(crop, material, bxdf_render, tmp_path):
+    # Render Region (Ctrl+B): BXDF_LAB renders only those pixels, and Blender writes them as it
+    # writes Cycles' (cropped, or in place in an empty frame). With a render region Blender's
+    # result holds only the region: the whole image handed back failed the render.
+    api.assign(material, "lambertian", reflectance=(0.7, 0.5, 0.3))
+    with bpy.context.temp_override(material=material):
+        assert bpy.ops.bxdf_lab.set_up_cycles() == {"FINISHED"}
+    scene = _scene(material, tmp_path)
+    bpy.data.objects.remove(bpy.data.objects["sun"])
+    lamp = bpy.data.lights.new("lamp", "POINT")  # every pixel differs: a misplaced region shows
+    lamp.energy, lamp.shadow_soft_size = 300.0, 0.0
+    lamp_obj = bpy.data.objects.new("lamp", lamp)
+    lamp_obj.location = (3.0, 1.5, 2.0)
+    scene.collection.objects.link(lamp_obj)
+    r = scene.render
+    r.use_border, r.use_crop_to_border = True, crop
+    r.border_min_x, r.border_max_x, r.border_min_y, r.border_max_y = 0.3, 0.8, 0.55, 0.95
+    ours = _render(scene, "BXDF_LAB", str(tmp_path / "bxdf_lab.exr"))
+    assert engine.last_error == ""
+    cycles = _render(scene, "CYCLES", str(tmp_path / "cycles.exr"))
+    # Columns 4..11 and rows 8..14 from the bottom (Blender truncates 0.3·16 = 4.8 to 4, ...).
+    columns, rows = slice(4, 12), slice(8, 15)
+    assert ours.shape == ((7, 8, 4) if crop else (SIZE, SIZE, 4)) == cycles.shape
+    np.testing.assert_allclose(ours[..., :3], cycles[..., :3], rtol=5e-3, atol=1e-4)
+    r.use_border = False
+    whole = bxdf_render(export.export_scene(bpy.context.evaluated_depsgraph_get()),
+                        {"samples": 4, "max_bounces": 0, "pixel_filter": "pixel_center", "seed": 7},
+                        bottom_up=True)
+    region = ours if crop else ours[rows, columns]
+    np.testing.assert_allclose(region, whole[rows, columns], rtol=1e-6, atol=1e-7)
+    assert region[..., :3].max() > 0.05 and not np.allclose(region[0], region[-1])
+    if not crop:
+        outside = np.ones((SIZE, SIZE), dtype=bool)
+        outside[rows, columns] = False
+        assert not ours[outside].any()
 
 
 def test_a_cancelled_render_writes_no_file(material, bxdf_render, tmp_path, monkeypatch):
