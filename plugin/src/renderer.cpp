@@ -37,7 +37,7 @@ void check_settings(const RenderSettings& s) {
   if (s.threads < 0) bad("threads", s.threads, "[0, inf) (0 = all cores)");
   if (s.tile_size < 1 || s.tile_size > 4096) bad("tile_size", s.tile_size, "[1, 4096]");
   if (s.samples_per_pass < 0) bad("samples_per_pass", s.samples_per_pass, "[0, inf)");
-  rendered_rect(s);
+  rendered_rect(s);  // throws for a region outside the image
 }
 
 // Automatic passes take about an eighth of the samples, but no more than this many, so that a
@@ -59,7 +59,7 @@ double thread_cpu_seconds() {
 
 PixelRect rendered_rect(const RenderSettings& s) {
   const PixelRect& r = s.region;
-  if (r.x0 == 0 && r.y0 == 0 && r.x1 == 0 && r.y1 == 0) return {0, 0, s.width, s.height};
+  if (!r.is_set()) return {0, 0, s.width, s.height};
   if (!(0 <= r.x0 && r.x0 < r.x1 && r.x1 <= s.width && 0 <= r.y0 && r.y0 < r.y1 &&
         r.y1 <= s.height))
     throw ParameterError("render setting 'region' is (" + std::to_string(r.x0) + ", " +

@@ -20,13 +20,13 @@ struct PixelRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   int width() const { return x1 - x0; }
   int height() const { return y1 - y0; }
-  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  bool is_set() const { return x0 != 0 || y0 != 0 || x1 != 0 || y1 != 0; }  // not all zero
 };
 
 struct RenderSettings {
   int width = 64, height = 64;
   // Blender's Render Region: only these pixels are rendered, into a film (and an image) of the
-  // region's size, each pixel as the whole image's render has it. Empty (the default): the
+  // region's size, each pixel as the whole image's render has it. All zero (the default): the
   // whole image.
   PixelRect region;
   int samples_per_pixel = 16;
@@ -79,7 +79,7 @@ struct RenderStats {
 };
 
 // The pixels a render with these settings covers: the region, or the whole image when it is
-// empty. Throws ParameterError for a region that is not inside the image.
+// not set. Throws ParameterError for a region that is not inside the image.
 PixelRect rendered_rect(const RenderSettings& settings);
 
 // Renders `scene` (committed) through `camera`. Throws ParameterError for bad settings.
