@@ -76,6 +76,20 @@ def _orthographic_camera(projection, camera_to_world, width, height):
     }
 
 
+# Named among the viewport render's warnings (the Render tab lists them) while a Render Region
+# applies to the view: F12 renders the region, the viewport still renders the whole view.
+REGION_NOT_APPLIED = ("Viewport: the Render Region is not applied; BxDF Lab's viewport renders "
+                      "the whole view (F12 renders only the region)")
+
+
+def render_region_asked(space, region_data, scene):
+    """Whether a Render Region applies to this 3D view: the scene's when it looks through the
+    camera, else the view's own (Ctrl+B in the viewport)."""
+    if region_data.view_perspective == "CAMERA":
+        return bool(scene.render.use_border)
+    return bool(space.use_render_border)
+
+
 def relevant_update(updates):
     """Whether an edit (a depsgraph's `updates`) changes what the render shows (a selection alone
     does not)."""
@@ -225,12 +239,15 @@ class ViewportSession:
         region_data = context.region_data
         render_settings = renderer.settings_dict(settings, "viewport",
                                                  renderer.cycles_light_paths(scene))
+        region_asked = render_region_asked(context.space_data, region_data, scene)
         key = (self.scene_version, width, height, tuple(map(tuple, region_data.view_matrix)),
-               tuple(map(tuple, region_data.window_matrix)), tuple(sorted(render_settings.items())))
+               tuple(map(tuple, region_data.window_matrix)), tuple(sorted(render_settings.items())),
+               region_asked)
         if key != self.job_key:
             camera = view_camera(region_data, (context.space_data.clip_start,
                                                context.space_data.clip_end), width, height)
-            self._restart(scene.name, camera, render_settings, key)
+            self._restart(scene.name, camera, render_settings, key,
+                          [REGION_NOT_APPLIED] if region_asked else [])
         job = self.job
         if job is None:
             return
@@ -238,14 +255,14 @@ class ViewportSession:
         self.display.draw(engine, scene, job, (region.width, region.height))
         self._drawn_version = job.version
 
-    def _restart(self, scene_name, camera, settings, key):
+    def _restart(self, scene_name, camera, settings, key, view_warnings=()):
         if self.job is not None:
             self.job.cancel()  # stops within a tile; not waited for
             self.restarts += 1
         data = dict(self.data, camera=camera, resolution=camera["resolution"])
         self.job = RenderJob(data, settings)
         self.job_key = key
-        self._record(scene_name, data["warnings"])
+        self._record(scene_name, list(data["warnings"]) + list(view_warnings))
         if self.start_timer:
             bpy.app.timers.register(self._redraw_when_new(self.job), first_interval=REDRAW_INTERVAL)
 

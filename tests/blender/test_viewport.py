@@ -33,11 +33,14 @@ class StandInEngine:
         self.stats = info
 
 
-def _context(scene, width, height, view_matrix, window_matrix, perspective=True):
+def _context(scene, width, height, view_matrix, window_matrix, perspective=True,
+             view_perspective="PERSP", render_border=False):
     region = type("Region", (), {"width": width, "height": height})()
     region_data = type("RegionView3D", (), {"view_matrix": view_matrix, "window_matrix": window_matrix,
-                                            "is_perspective": perspective})()
-    space = type("SpaceView3D", (), {"clip_start": 0.01, "clip_end": 1000.0})()
+                                            "is_perspective": perspective,
+                                            "view_perspective": view_perspective})()
+    space = type("SpaceView3D", (), {"clip_start": 0.01, "clip_end": 1000.0,
+                                     "use_render_border": render_border})()
     return type("Context", (), {"region": region, "region_data": region_data, "space_data": space,
                                 "scene": scene})()
 
@@ -210,6 +213,27 @@ def test_an_orthographic_view_renders_in_the_session(scene):
     assert session.job.error == "" and "4 samples per pixel" in engine.stats
     image = display.drawn[-1][0].image
     assert image.shape == (16, 24, 4) and image[..., :3].max() > 0.05
+    session.stop()
+
+
+@pytest.mark.parametrize("view_perspective, view_border, scene_border, warned", [
+    ("PERSP", True, False, True),     # the view's own region (Ctrl+B in the viewport)
+    ("CAMERA", False, True, True),    # through the camera: the scene's region
+    ("PERSP", False, True, False),    # the scene's region is not the free view's
+    ("CAMERA", True, False, False),   # nor the view's own region the camera view's
+])
+def test_a_render_region_the_viewport_does_not_apply_is_named(scene, view_perspective, view_border,
+                                                              scene_border, warned):
+    scene.render.use_border = scene_border
+    session = viewport.ViewportSession(display=RecordingDisplay(), start_timer=False)
+    view, window = _camera_view(scene, scene.camera, 16, 16)
+    context = _context(scene, 16, 16, view, window, view_perspective=view_perspective,
+                       render_border=view_border)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    session.update(context, depsgraph, [])
+    session.draw(context, depsgraph, StandInEngine())
+    assert session.job is not None
+    assert (viewport.REGION_NOT_APPLIED in render_report.last("viewport").warnings) == warned
     session.stop()
 
 
