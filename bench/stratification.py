@@ -68,22 +68,23 @@ class Moments:
         self.tails = [0] * len(TAIL_THRESHOLDS)
         self.clipped = [None] * len(TAIL_THRESHOLDS)  # Moments of the values clipped there
 
-    def add(self, image, clip=True):
+    def add(self, image, one_sample=False):
+        """Adds a render; `one_sample` (a one-sample render) also counts its values above the
+        tail thresholds and adds them clipped there, which mean something only per sample."""
         import numpy as np
 
         x = np.asarray(image[..., :3], dtype=np.float64)
-        if clip:
-            for i, t in enumerate(TAIL_THRESHOLDS):
-                if self.clipped[i] is None:
-                    self.clipped[i] = Moments()
-                self.clipped[i].add(np.minimum(x, t), clip=False)
         if self.sum is None:
             self.sum, self.sum_sq = np.zeros_like(x), np.zeros_like(x)
         self.count += 1
         self.sum += x
         self.sum_sq += x * x
-        for i, t in enumerate(TAIL_THRESHOLDS):
-            self.tails[i] += int((x > t).sum())
+        if one_sample:
+            for i, t in enumerate(TAIL_THRESHOLDS):
+                self.tails[i] += int((x > t).sum())
+                if self.clipped[i] is None:
+                    self.clipped[i] = Moments()
+                self.clipped[i].add(np.minimum(x, t))
 
     def mean(self):
         return self.sum / self.count
@@ -108,7 +109,7 @@ def main():
             for e in engines:
                 image = side_by_side.render(e, spec, spp, seed, args.threads,
                                             os.path.join(work, f"{e}.exr"))[2]
-                moments[e].add(image, clip=spp == 1)
+                moments[e].add(image, one_sample=spp == 1)
             seed += 1
     os.rmdir(work)
 
