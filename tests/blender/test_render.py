@@ -11,6 +11,8 @@ import pytest
 from bxdf_lab import api, engine, export
 
 SIZE = 16
+# bxdf.render's settings for what _scene sets on the Render tab.
+DIRECT = {"samples": 4, "max_bounces": 0, "pixel_filter": "pixel_center", "seed": 7}
 
 
 def _scene(material, tmp_path):
@@ -65,7 +67,7 @@ def test_f12_writes_the_image_of_the_renderer_called_directly(material, bxdf_ren
     written = _render(scene, "BXDF_LAB", str(tmp_path / "f12.exr"))
     assert engine.last_error == ""
     direct = bxdf_render(export.export_scene(bpy.context.evaluated_depsgraph_get()),
-                         {"samples": 4, "max_bounces": 0, "pixel_filter": "pixel_center", "seed": 7},
+                         DIRECT,
                          bottom_up=True)
     np.testing.assert_allclose(written, direct, rtol=1e-6, atol=1e-7)
     # and it is the Lambertian's radiance R·E·cos θ/π with E = π
@@ -119,7 +121,7 @@ def test_a_render_region_renders_only_its_pixels_as_cycles_does(crop, material, 
     np.testing.assert_allclose(ours[..., :3], cycles[..., :3], rtol=5e-3, atol=1e-4)
     r.use_border = False
     whole = bxdf_render(export.export_scene(bpy.context.evaluated_depsgraph_get()),
-                        {"samples": 4, "max_bounces": 0, "pixel_filter": "pixel_center", "seed": 7},
+                        DIRECT,
                         bottom_up=True)
     region = ours if crop else ours[rows, columns]
     np.testing.assert_allclose(region, whole[rows, columns], rtol=1e-6, atol=1e-7)
