@@ -15,6 +15,10 @@ the region shows. An orthographic projection gives the view's width in scene uni
 scale), its offset (the shift) and its depth range, which in a free orthographic view starts
 behind the eye (Blender clips it symmetrically about the pivot): the camera then moves back to the
 near plane.
+
+A Render Region that applies to the view (its own, or the scene's through the camera) is rendered
+alone, each pixel as the whole view's render has it, and drawn over its part of the view, as
+Cycles' viewport does.
 """
 
 import threading
@@ -76,18 +80,61 @@ def _orthographic_camera(projection, camera_to_world, width, height):
     }
 
 
-# Named among the viewport render's warnings (the Render tab lists them) while a Render Region
-# applies to the view: F12 renders the region, the viewport still renders the whole view.
-REGION_NOT_APPLIED = ("Viewport: the Render Region is not applied; BxDF Lab's viewport renders "
-                      "the whole view (F12 renders only the region)")
+def view_render_border(space, region_data, scene):
+    """The Render Region that applies to a 3D view, as (left, bottom, right, top) fractions of the
+    view clamped to it, or None: as Cycles' blender_camera_border. A free view takes its own region
+    (Ctrl+B in the viewport). Looking through the camera, the scene's region is a part of the
+    camera frame, so it maps through the frame's place in the view; with no region but an opaque
+    passepartout (alpha 1), the frame itself."""
+    if region_data.view_perspective != "CAMERA":
+        if not space.use_render_border:
+            return None
+        return _clamped((space.render_border_min_x, space.render_border_min_y,
+                         space.render_border_max_x, space.render_border_max_y))
+    camera = space.camera if space.use_local_camera else scene.camera
+    if camera is None:
+        return None
+    r = scene.render
+    if r.use_border:
+        border = (r.border_min_x, r.border_min_y, r.border_max_x, r.border_max_y)
+    elif camera.type == "CAMERA" and camera.data.show_passepartout and \
+            camera.data.passepartout_alpha == 1.0:
+        border = (0.0, 0.0, 1.0, 1.0)
+    else:
+        return None
+    left, bottom, right, top = camera_frame_in_view(camera, scene, region_data)
+    return _clamped((left + border[0] * (right - left), bottom + border[1] * (top - bottom),
+                     left + border[2] * (right - left), bottom + border[3] * (top - bottom)))
 
 
-def render_region_asked(space, region_data, scene):
-    """Whether a Render Region applies to this 3D view: the scene's when it looks through the
-    camera, else the view's own (Ctrl+B in the viewport)."""
-    if region_data.view_perspective == "CAMERA":
-        return bool(scene.render.use_border)
-    return bool(space.use_render_border)
+def camera_frame_in_view(camera, scene, region_data):
+    """The camera frame's (left, bottom, right, top) as fractions of the view: its corners (the
+    frame of the scene's render size, shift included) through the view's projection."""
+    projection = region_data.window_matrix @ region_data.view_matrix
+    xs, ys = [], []
+    for corner in camera.data.view_frame(scene=scene):
+        p = projection @ (camera.matrix_world @ corner).to_4d()
+        xs.append((p.x / p.w + 1.0) / 2.0)
+        ys.append((p.y / p.w + 1.0) / 2.0)
+    return min(xs), min(ys), max(xs), max(ys)
+
+
+def _clamped(border):
+    return tuple(min(max(float(v), 0.0), 1.0) for v in border)
+
+
+def border_pixels(border, width, height):
+    """The view's pixels a border covers, as bxdf.render's `region` (x_min, y_min, x_max, y_max,
+    rows from the top) for a `width`×`height` view: Cycles' get_buffer_params, each bound
+    truncated from a single-precision product and at least one pixel wide and high (kept inside
+    the view)."""
+    def span(low, high, size):
+        start = min(int(np.float32(low) * np.float32(size)), size - 1)
+        end = int(np.float32(high) * np.float32(size))
+        return start, min(max(end, start + 1), size)
+    x0, x1 = span(border[0], border[2], width)
+    y0, y1 = span(border[1], border[3], height)
+    return (x0, height - y1, x1, height - y0)
 
 
 def relevant_update(updates):
@@ -157,7 +204,9 @@ class GPUDisplay:
         self.texture = None
         self.version = None
 
-    def draw(self, engine, scene, job, region_size):
+    def draw(self, engine, scene, job, rect):
+        """Draws the job's newest image over `rect` (x, y, width, height) of the region, in the
+        region's pixels from its bottom-left corner."""
         import gpu
         from gpu_extras.presets import draw_texture_2d
 
@@ -171,9 +220,22 @@ class GPUDisplay:
             self.version = (id(job), job.version)
         gpu.state.blend_set("ALPHA_PREMULT")
         engine.bind_display_space_shader(scene)
-        draw_texture_2d(self.texture, (0, 0), region_size[0], region_size[1])
+        draw_texture_2d(self.texture, rect[:2], rect[2], rect[3])
         engine.unbind_display_space_shader()
         gpu.state.blend_set("NONE")
+
+
+def _draw_rect(pixels, width, height, region):
+    """Where an image of the view's `pixels` (border_pixels', or None for all `width`×`height`)
+    lies in the region: (x, y, width, height) in the region's pixels from its bottom-left, the
+    render's pixels stretched over the region's (Viewport Pixel Size)."""
+    if pixels is None:
+        return (0, 0, region.width, region.height)
+    sx, sy = region.width / width, region.height / height
+    x0, top, x1, bottom = pixels
+    left, right = round(x0 * sx), round(x1 * sx)
+    low, high = round((height - bottom) * sy), round((height - top) * sy)
+    return (left, low, right - left, high - low)
 
 
 def sessions():
@@ -239,30 +301,32 @@ class ViewportSession:
         region_data = context.region_data
         render_settings = renderer.settings_dict(settings, "viewport",
                                                  renderer.cycles_light_paths(scene))
-        region_asked = render_region_asked(context.space_data, region_data, scene)
+        border = view_render_border(context.space_data, region_data, scene)
+        pixels = border_pixels(border, width, height) if border is not None else None
         key = (self.scene_version, width, height, tuple(map(tuple, region_data.view_matrix)),
                tuple(map(tuple, region_data.window_matrix)), tuple(sorted(render_settings.items())),
-               region_asked)
+               pixels)
         if key != self.job_key:
             camera = view_camera(region_data, (context.space_data.clip_start,
                                                context.space_data.clip_end), width, height)
-            self._restart(scene.name, camera, render_settings, key,
-                          [REGION_NOT_APPLIED] if region_asked else [])
+            if pixels is not None:
+                render_settings["region"] = pixels
+            self._restart(scene.name, camera, render_settings, key)
         job = self.job
         if job is None:
             return
         engine.update_stats("", self._status(job))
-        self.display.draw(engine, scene, job, (region.width, region.height))
+        self.display.draw(engine, scene, job, _draw_rect(pixels, width, height, region))
         self._drawn_version = job.version
 
-    def _restart(self, scene_name, camera, settings, key, view_warnings=()):
+    def _restart(self, scene_name, camera, settings, key):
         if self.job is not None:
             self.job.cancel()  # stops within a tile; not waited for
             self.restarts += 1
         data = dict(self.data, camera=camera, resolution=camera["resolution"])
         self.job = RenderJob(data, settings)
         self.job_key = key
-        self._record(scene_name, list(data["warnings"]) + list(view_warnings))
+        self._record(scene_name, list(data["warnings"]))
         if self.start_timer:
             bpy.app.timers.register(self._redraw_when_new(self.job), first_interval=REDRAW_INTERVAL)
 

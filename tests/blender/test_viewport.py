@@ -34,13 +34,18 @@ class StandInEngine:
 
 
 def _context(scene, width, height, view_matrix, window_matrix, perspective=True,
-             view_perspective="PERSP", render_border=False):
+             view_perspective="PERSP", view_border=None):
+    """`view_border`: the view's own Render Region (left, bottom, right, top), or None."""
     region = type("Region", (), {"width": width, "height": height})()
     region_data = type("RegionView3D", (), {"view_matrix": view_matrix, "window_matrix": window_matrix,
                                             "is_perspective": perspective,
                                             "view_perspective": view_perspective})()
+    left, bottom, right, top = view_border or (0.0, 0.0, 1.0, 1.0)
     space = type("SpaceView3D", (), {"clip_start": 0.01, "clip_end": 1000.0,
-                                     "use_render_border": render_border})()
+                                     "use_render_border": view_border is not None,
+                                     "render_border_min_x": left, "render_border_min_y": bottom,
+                                     "render_border_max_x": right, "render_border_max_y": top,
+                                     "use_local_camera": False, "camera": None})()
     return type("Context", (), {"region": region, "region_data": region_data, "space_data": space,
                                 "scene": scene})()
 
@@ -216,25 +221,91 @@ def test_an_orthographic_view_renders_in_the_session(scene):
     session.stop()
 
 
-@pytest.mark.parametrize("view_perspective, view_border, scene_border, warned", [
-    ("PERSP", True, False, True),     # the view's own region (Ctrl+B in the viewport)
-    ("CAMERA", False, True, True),    # through the camera: the scene's region
-    ("PERSP", False, True, False),    # the scene's region is not the free view's
-    ("CAMERA", True, False, False),   # nor the view's own region the camera view's
-])
-def test_a_render_region_the_viewport_does_not_apply_is_named(scene, view_perspective, view_border,
-                                                              scene_border, warned):
-    scene.render.use_border = scene_border
-    session = viewport.ViewportSession(display=RecordingDisplay(), start_timer=False)
-    view, window = _camera_view(scene, scene.camera, 16, 16)
-    context = _context(scene, 16, 16, view, window, view_perspective=view_perspective,
-                       render_border=view_border)
+def _session_image(context):
+    """The finished viewport render of `context` and the rectangle it was drawn over."""
+    display = RecordingDisplay()
+    session = viewport.ViewportSession(display=display, start_timer=False)
     depsgraph = bpy.context.evaluated_depsgraph_get()
     session.update(context, depsgraph, [])
     session.draw(context, depsgraph, StandInEngine())
-    assert session.job is not None
-    assert (viewport.REGION_NOT_APPLIED in render_report.last("viewport").warnings) == warned
+    _wait(session.job)
+    session.draw(context, depsgraph, StandInEngine())
+    assert session.job.error == ""
+    image, rect = session.job.image, display.drawn[-1][3]
     session.stop()
+    return image, rect
+
+
+def _zoomed_out_camera_view(scene, size):
+    """A camera view of `size`² pixels showing twice the camera's field: the frame fills the
+    middle half of the view, [0.25, 0.75]² (the shift scales with it)."""
+    view, window = _camera_view(scene, scene.camera, size, size)
+    return view, mathutils.Matrix.Diagonal((0.5, 0.5, 1.0, 1.0)) @ window
+
+
+def _crop(image, region):
+    """bxdf.render's `region` (rows from the top) out of a bottom-up image."""
+    x0, top, x1, bottom = region
+    height = image.shape[0]
+    return image[height - bottom:height - top, x0:x1]
+
+
+@pytest.mark.parametrize("case", ["view_border", "scene_border", "passepartout"])
+def test_the_viewport_renders_only_the_render_region(scene, case):
+    """As Cycles' viewport: a free view renders its own region; through the camera, the scene's
+    region inside the camera frame, or the frame alone behind an opaque passepartout. The pixels
+    are the whole view's and the image is drawn over its own part of the region."""
+    size = 50
+    scene.render.resolution_x = scene.render.resolution_y = size
+    scene.render.resolution_percentage = 100
+    view, window = _zoomed_out_camera_view(scene, size)
+    if case == "view_border":
+        context = _context(scene, size, size, view, window, view_border=(0.31, 0.11, 0.69, 0.53))
+        expected_region = (15, 24, 34, 45)  # x 15.5 -> 15, 34.5 -> 34; y 5.5 -> 5, 26.5 -> 26
+    elif case == "scene_border":
+        scene.render.use_border = True
+        scene.render.border_min_x, scene.render.border_max_x = 0.2, 0.6
+        scene.render.border_min_y, scene.render.border_max_y = 0.12, 0.52
+        context = _context(scene, size, size, view, window, view_perspective="CAMERA")
+        expected_region = (17, 25, 27, 35)  # the frame's 0.35..0.55 x 0.31..0.51 of the view
+    else:
+        scene.camera.data.show_passepartout, scene.camera.data.passepartout_alpha = True, 1.0
+        context = _context(scene, size, size, view, window, view_perspective="CAMERA")
+        expected_region = (12, 13, 37, 38)  # the frame: 0.25..0.75 of the view
+    image, rect = _session_image(context)
+    whole, whole_rect = _session_image(_context(scene, size, size, view, window))
+    x0, top, x1, bottom = expected_region
+    assert image.shape == (bottom - top, x1 - x0, 4)
+    assert np.array_equal(image, _crop(whole, expected_region))
+    assert rect == (x0, size - bottom, x1 - x0, bottom - top) and whole_rect == (0, 0, size, size)
+    assert whole[..., :3].max() > 0.05 and not render_report.last("viewport").warnings
+
+
+@pytest.mark.parametrize("view_perspective, view_border, scene_border", [
+    ("PERSP", None, True),                    # the scene's region is not the free view's
+    ("CAMERA", (0.2, 0.2, 0.4, 0.4), False),  # nor the view's own region the camera view's
+    ("CAMERA", None, False),                  # a translucent passepartout (the default 0.5)
+])
+def test_a_render_region_of_another_kind_of_view_is_not_applied(scene, view_perspective, view_border,
+                                                                  scene_border):
+    scene.render.use_border = scene_border
+    view, window = _zoomed_out_camera_view(scene, 16)
+    image, rect = _session_image(_context(scene, 16, 16, view, window, view_perspective=view_perspective,
+                                          view_border=view_border))
+    assert image.shape == (16, 16, 4) and rect == (0, 0, 16, 16)
+
+
+def test_a_border_covers_at_least_one_pixel_inside_the_view():
+    assert viewport.border_pixels((0.0, 0.0, 1.0, 1.0), 40, 20) == (0, 0, 40, 20)
+    assert viewport.border_pixels((0.5, 0.5, 0.5, 0.5), 40, 20) == (20, 9, 21, 10)
+    assert viewport.border_pixels((1.0, 1.0, 1.0, 1.0), 40, 20) == (39, 0, 40, 1)
+
+
+def test_the_drawn_rectangle_stretches_with_the_pixel_size():
+    region = type("Region", (), {"width": 101, "height": 60})()
+    assert viewport._draw_rect(None, 50, 30, region) == (0, 0, 101, 60)
+    # Columns 10..20 of 50 over 101 pixels; rows 5..15 from the top of 30 are 15..25 from the bottom.
+    assert viewport._draw_rect((10, 5, 20, 15), 50, 30, region) == (20, 30, 20, 20)
 
 
 def test_a_broken_material_is_reported_in_the_viewport(scene, material):
