@@ -143,7 +143,7 @@ void read_render_settings(const Reader& r, const json& j, RenderSettings& s) {
   const std::string path = "render";
   r.object(j, path);
   r.only_keys(j, path, {"width", "height", "spp", "max_bounces", "filter", "filter_width", "seed",
-                        "tile_size", "transparent_max_bounces", "transparent_background"});
+                        "tile_size", "transparent_max_bounces", "transparent_background", "region"});
   if (j.contains("width")) s.width = r.integer_in(j["width"], "render.width", 1, 65536, "[1, 65536]");
   if (j.contains("height"))
     s.height = r.integer_in(j["height"], "render.height", 1, 65536, "[1, 65536]");
@@ -173,6 +173,17 @@ void read_render_settings(const Reader& r, const json& j, RenderSettings& s) {
     if (!j["transparent_background"].is_boolean())
       r.fail("render.transparent_background", "true or false", j["transparent_background"]);
     s.transparent_background = j["transparent_background"].get<bool>();
+  }
+  if (j.contains("region")) {
+    // Blender's Render Region in pixels, rows from the top; whether it lies inside the image is
+    // checked at render time, against the size the render gets (the CLI may change it).
+    const json& region = j["region"];
+    const char* shape = "[x_min, y_min, x_max, y_max] (4 integers in [0, 65536], rows from the top)";
+    if (!region.is_array() || region.size() != 4) r.fail("render.region", shape, region);
+    int* bounds[4] = {&s.region.x0, &s.region.y0, &s.region.x1, &s.region.y1};
+    for (size_t i = 0; i < 4; ++i)
+      *bounds[i] = r.integer_in(region[i], "render.region[" + std::to_string(i) + "]", 0, 65536,
+                                "[0, 65536]");
   }
 }
 

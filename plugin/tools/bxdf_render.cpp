@@ -105,6 +105,7 @@ int main(int argc, char** argv) {
     if (opt.height > 0) settings.height = opt.height;
     if (!opt.filter.empty()) settings.filter = parse_filter(opt.filter);
     if (opt.filter_width > 0.0f) settings.filter_width = opt.filter_width;
+    rendered_rect(settings);  // the file's region inside the image the options make
     const std::string ext = opt.output.size() >= 4 ? opt.output.substr(opt.output.size() - 4) : "";
     if (ext != ".exr" && ext != ".png")
       throw bxdf::ParameterError("output file '" + opt.output + "' must end in .exr or .png");

@@ -122,6 +122,34 @@ TEST_F(CLI, OptionsOverrideTheFile) {
   EXPECT_NE(bad_option.output.find("filter 'blur'"), std::string::npos) << bad_option.output;
 }
 
+TEST_F(CLI, ARegionRendersItsPixelsAsTheWholeImageHasThem) {
+  write("floor.obj", kFloorObj);
+  write("floor.mtl", kFloorMtl);
+  const std::string whole_scene = write("scene.json", kGoodScene);
+  std::string text = kGoodScene;
+  const std::string spp = "\"spp\": 4";
+  text.replace(text.find(spp), spp.size(), spp + ", \"region\": [4, 2, 20, 10]");
+  const std::string region_scene = write("region.json", text);
+  const RunResult whole = run(whole_scene + " -o " + path("whole.exr") + " --threads 2 -q");
+  const RunResult region = run(region_scene + " -o " + path("region.exr") + " --threads 2 -q");
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  ASSERT_EQ(region.exit_code, 0) << region.output;
+  const Image w = read_image(path("whole.exr")), r = read_image(path("region.exr"));
+  ASSERT_EQ(r.width, 16);
+  ASSERT_EQ(r.height, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 16; ++x)
+      for (int c = 0; c < 4; ++c)
+        ASSERT_EQ(r.rgba[size_t(4 * (y * 16 + x) + c)], w.rgba[size_t(4 * ((y + 2) * 24 + x + 4) + c)])
+            << "pixel " << x << ", " << y;
+  // A region the image (here made smaller by an option) does not hold is refused by name.
+  const RunResult outside = run(region_scene + " -o " + path("outside.exr") + " --width 12 -q");
+  EXPECT_EQ(outside.exit_code, 1) << outside.output;
+  EXPECT_NE(outside.output.find("'region' is (4, 2, 20, 10)"), std::string::npos) << outside.output;
+  EXPECT_NE(outside.output.find("x_max <= width 12"), std::string::npos) << outside.output;
+  EXPECT_FALSE(fs::exists(path("outside.exr")));
+}
+
 struct BadCase {
   const char* name;
   std::string text;                    // the scene file
@@ -167,6 +195,10 @@ TEST_F(CLI, EachKindOfBadSceneFailsWithItsMessage) {
        {"camera.ortho_scale", "(0, inf)"}},
       {"bad_radius", replace("\"radius\": 1", "\"radius\": -1"), {"meshes[0].radius", "(0, inf)"}},
       {"clip", replace("\"clip_end\": 100", "\"clip_end\": 0.05"), {"camera.clip_end"}},
+      {"region_shape", replace("\"spp\": 4", "\"spp\": 4, \"region\": [0, 0, 8]"),
+       {"render.region", "[x_min, y_min, x_max, y_max]"}},
+      {"region_bound", replace("\"spp\": 4", "\"spp\": 4, \"region\": [0, -1, 8, 8]"),
+       {"render.region[1]", "[0, 65536]"}},
   };
   // Every case through the reader the CLI uses (a process start costs ~0.5 s here, as OIIO
   // loads its codecs), and a few through the CLI itself for the exit code and the message.
