@@ -77,10 +77,22 @@ def render_region(scene, width, height):
     r = scene.render
     if not r.use_border:
         return None
-    def bound(fraction, size):
-        return int(np.float32(fraction) * np.float32(size))
-    x0, x1 = bound(r.border_min_x, width), bound(r.border_max_x, width)
-    y0, y1 = bound(r.border_min_y, height), bound(r.border_max_y, height)
+    return border_pixels((r.border_min_x, r.border_min_y, r.border_max_x, r.border_max_y),
+                         width, height)
+
+
+def border_pixels(border, width, height):
+    """The pixels of a `width`×`height` image that a border (left, bottom, right, top fractions,
+    within [0, 1]) covers, as bxdf.render's `region` (x_min, y_min, x_max, y_max, rows from the
+    top): Blender's and Cycles' arithmetic, each bound truncated from a single-precision product,
+    and at least one pixel wide and high inside the image (Cycles' viewport; Blender refuses a
+    smaller F12 region itself)."""
+    def span(low, high, size):
+        start = min(int(np.float32(low) * np.float32(size)), size - 1)
+        end = int(np.float32(high) * np.float32(size))
+        return start, min(max(end, start + 1), size)
+    x0, x1 = span(border[0], border[2], width)
+    y0, y1 = span(border[1], border[3], height)
     return (x0, height - y1, x1, height - y0)
 
 

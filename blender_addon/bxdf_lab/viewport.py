@@ -92,13 +92,12 @@ def view_render_border(space, region_data, scene):
         return _clamped((space.render_border_min_x, space.render_border_min_y,
                          space.render_border_max_x, space.render_border_max_y))
     camera = space.camera if space.use_local_camera else scene.camera
-    if camera is None:
+    if camera is None or camera.type != "CAMERA":  # any object can be the scene's camera
         return None
     r = scene.render
     if r.use_border:
         border = (r.border_min_x, r.border_min_y, r.border_max_x, r.border_max_y)
-    elif camera.type == "CAMERA" and camera.data.show_passepartout and \
-            camera.data.passepartout_alpha == 1.0:
+    elif camera.data.show_passepartout and camera.data.passepartout_alpha == 1.0:
         border = (0.0, 0.0, 1.0, 1.0)
     else:
         return None
@@ -121,20 +120,6 @@ def camera_frame_in_view(camera, scene, region_data):
 
 def _clamped(border):
     return tuple(min(max(float(v), 0.0), 1.0) for v in border)
-
-
-def border_pixels(border, width, height):
-    """The view's pixels a border covers, as bxdf.render's `region` (x_min, y_min, x_max, y_max,
-    rows from the top) for a `width`×`height` view: Cycles' get_buffer_params, each bound
-    truncated from a single-precision product and at least one pixel wide and high (kept inside
-    the view)."""
-    def span(low, high, size):
-        start = min(int(np.float32(low) * np.float32(size)), size - 1)
-        end = int(np.float32(high) * np.float32(size))
-        return start, min(max(end, start + 1), size)
-    x0, x1 = span(border[0], border[2], width)
-    y0, y1 = span(border[1], border[3], height)
-    return (x0, height - y1, x1, height - y0)
 
 
 def relevant_update(updates):
@@ -226,8 +211,8 @@ class GPUDisplay:
 
 
 def _draw_rect(pixels, width, height, region):
-    """Where an image of the view's `pixels` (border_pixels', or None for all `width`×`height`)
-    lies in the region: (x, y, width, height) in the region's pixels from its bottom-left, the
+    """Where an image of the view's `pixels` (renderer.border_pixels', or None for all of the
+    `width`×`height` view) lies in the region: (x, y, width, height) in the region's pixels from its bottom-left, the
     render's pixels stretched over the region's (Viewport Pixel Size)."""
     if pixels is None:
         return (0, 0, region.width, region.height)
@@ -302,7 +287,7 @@ class ViewportSession:
         render_settings = renderer.settings_dict(settings, "viewport",
                                                  renderer.cycles_light_paths(scene))
         border = view_render_border(context.space_data, region_data, scene)
-        pixels = border_pixels(border, width, height) if border is not None else None
+        pixels = renderer.border_pixels(border, width, height) if border is not None else None
         key = (self.scene_version, width, height, tuple(map(tuple, region_data.view_matrix)),
                tuple(map(tuple, region_data.window_matrix)), tuple(sorted(render_settings.items())),
                pixels)

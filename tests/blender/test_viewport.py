@@ -296,9 +296,9 @@ def test_a_render_region_of_another_kind_of_view_is_not_applied(scene, view_pers
 
 
 def test_a_border_covers_at_least_one_pixel_inside_the_view():
-    assert viewport.border_pixels((0.0, 0.0, 1.0, 1.0), 40, 20) == (0, 0, 40, 20)
-    assert viewport.border_pixels((0.5, 0.5, 0.5, 0.5), 40, 20) == (20, 9, 21, 10)
-    assert viewport.border_pixels((1.0, 1.0, 1.0, 1.0), 40, 20) == (39, 0, 40, 1)
+    assert renderer.border_pixels((0.0, 0.0, 1.0, 1.0), 40, 20) == (0, 0, 40, 20)
+    assert renderer.border_pixels((0.5, 0.5, 0.5, 0.5), 40, 20) == (20, 9, 21, 10)
+    assert renderer.border_pixels((1.0, 1.0, 1.0, 1.0), 40, 20) == (39, 0, 40, 1)
 
 
 def test_the_drawn_rectangle_stretches_with_the_pixel_size():
