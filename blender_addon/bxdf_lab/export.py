@@ -265,6 +265,9 @@ def camera_dict(scene, camera_obj):
     if camera_obj is None:
         out["missing"] = True
         return out
+    if camera_obj.type != "CAMERA":  # Blender lets any object be the scene's camera
+        raise ValueError(f"scene camera '{camera_obj.name}' is an object of type {camera_obj.type}; "
+                         "BxDF Lab renders through a camera object (type CAMERA)")
     cam = camera_obj.data
     matrix = _matrix(camera_obj.matrix_world)
     # Blender ignores scale for the view; the renderer wants an orthonormal frame.

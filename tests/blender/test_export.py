@@ -259,6 +259,12 @@ def test_camera_resolution_and_world(scene):
     assert data["warnings"] == []
 
 
+def test_an_object_that_is_not_a_camera_as_the_scene_camera_is_refused_by_name(scene):
+    scene.camera = bpy.data.objects["instancer"]
+    with pytest.raises(ValueError, match="scene camera 'instancer' is an object of type EMPTY"):
+        _export()
+
+
 def test_an_unsupported_world_texture_becomes_the_socket_default_with_a_warning(scene):
     tree = scene.world.node_tree
     sky = tree.nodes.new("ShaderNodeTexSky")
