@@ -37,7 +37,6 @@ void check_settings(const RenderSettings& s) {
   if (s.threads < 0) bad("threads", s.threads, "[0, inf) (0 = all cores)");
   if (s.tile_size < 1 || s.tile_size > 4096) bad("tile_size", s.tile_size, "[1, 4096]");
   if (s.samples_per_pass < 0) bad("samples_per_pass", s.samples_per_pass, "[0, inf)");
-  rendered_rect(s);  // throws for a region outside the image
 }
 
 // Automatic passes take about an eighth of the samples, but no more than this many, so that a
@@ -75,6 +74,10 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
             const RenderSettings& settings, const RenderCallbacks& callbacks,
             RenderStats* stats_out) {
   check_settings(settings);
+  // The film covers the rendered rectangle (a region outside the image is refused here); the
+  // camera, the pixel seeds and the tiles' pixels keep the whole image's coordinates, so a
+  // region's pixels are the whole render's.
+  const PixelRect rect = rendered_rect(settings);
   if (!scene.committed()) throw ParameterError("render: the scene is not committed");
   const auto start = std::chrono::steady_clock::now();
   const Camera camera(camera_settings, settings.width, settings.height);
@@ -85,9 +88,6 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   integrator_settings.transparent_max_bounces = settings.transparent_max_bounces;
   integrator_settings.transparent_background = settings.transparent_background;
   const PathTracer tracer(scene, integrator_settings);
-  // The film covers the rendered rectangle; the camera, the pixel seeds and the tiles' pixels
-  // keep the whole image's coordinates, so a region's pixels are the whole render's.
-  const PixelRect rect = rendered_rect(settings);
   Film film(rect.width(), rect.height());
 
   std::vector<Tile> tiles;
