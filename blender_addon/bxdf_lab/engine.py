@@ -154,8 +154,7 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
 
             settings = renderer.settings_dict(scene.bxdf_lab_render, purpose,
                                               renderer.cycles_light_paths(scene))
-            if region is not None:
-                settings["region"] = region
+            settings["region"] = region
             # Blender without a window (blender -b) shows no partial result: the passes' images
             # (a copy, a flip and foreach_set each, ~1 ms at 128², competing with the render
             # threads) would be made for nobody. Cycles updates none there either.

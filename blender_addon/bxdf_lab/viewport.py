@@ -212,8 +212,8 @@ class GPUDisplay:
 
 def _draw_rect(pixels, width, height, region):
     """Where an image of the view's `pixels` (renderer.border_pixels', or None for all of the
-    `width`×`height` view) lies in the region: (x, y, width, height) in the region's pixels from its bottom-left, the
-    render's pixels stretched over the region's (Viewport Pixel Size)."""
+    `width`×`height` view) lies in the region: (x, y, width, height) in the region's pixels from
+    its bottom-left, the render's pixels stretched over the region's (Viewport Pixel Size)."""
     if pixels is None:
         return (0, 0, region.width, region.height)
     sx, sy = region.width / width, region.height / height
@@ -288,14 +288,12 @@ class ViewportSession:
                                                  renderer.cycles_light_paths(scene))
         border = view_render_border(context.space_data, region_data, scene)
         pixels = renderer.border_pixels(border, width, height) if border is not None else None
+        render_settings["region"] = pixels
         key = (self.scene_version, width, height, tuple(map(tuple, region_data.view_matrix)),
-               tuple(map(tuple, region_data.window_matrix)), tuple(sorted(render_settings.items())),
-               pixels)
+               tuple(map(tuple, region_data.window_matrix)), tuple(sorted(render_settings.items())))
         if key != self.job_key:
             camera = view_camera(region_data, (context.space_data.clip_start,
                                                context.space_data.clip_end), width, height)
-            if pixels is not None:
-                render_settings["region"] = pixels
             self._restart(scene.name, camera, render_settings, key)
         job = self.job
         if job is None:
@@ -311,7 +309,7 @@ class ViewportSession:
         data = dict(self.data, camera=camera, resolution=camera["resolution"])
         self.job = RenderJob(data, settings)
         self.job_key = key
-        self._record(scene_name, list(data["warnings"]))
+        self._record(scene_name, data["warnings"])
         if self.start_timer:
             bpy.app.timers.register(self._redraw_when_new(self.job), first_interval=REDRAW_INTERVAL)
 
