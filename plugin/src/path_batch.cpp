@@ -6,7 +6,10 @@ namespace bxdf::render {
 
 PathBatch::PathBatch(const Scene& scene, const PathTracer& tracer) : scene_(scene), tracer_(tracer) {
   for (const Material& m : scene.materials())
-    if (m.graph) registers_per_path_ = std::max(registers_per_path_, size_t(m.graph->num_registers));
+    if (m.graph) {
+      registers_per_path_ = std::max(registers_per_path_, size_t(m.graph->num_registers));
+      looks_up_texels_ = looks_up_texels_ || !m.graph->uv_lookups.empty();
+    }
   register_block_.resize(registers_per_path_ * size_t(kSize));
 }
 
@@ -23,6 +26,7 @@ void PathBatch::prefetch_shading(int live) const {
     if (found_[size_t(a)]) scene_.prefetch_triangle(hits_[size_t(a)]);
   for (int a = 0; a < live; ++a)
     if (found_[size_t(a)]) scene_.prefetch_vertices(hits_[size_t(a)]);
+  if (!looks_up_texels_) return;
   for (int a = 0; a < live; ++a) {
     if (!found_[size_t(a)]) continue;
     const Hit& hit = hits_[size_t(a)];

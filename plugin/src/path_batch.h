@@ -89,6 +89,8 @@ class PathBatch {
   std::array<const Vec3*, kSize> registers_;
   std::vector<Vec3> register_block_;
   size_t registers_per_path_ = 0;
+  // Whether any material's program reads texels at the hit's UVs (prefetch_shading's last pass).
+  bool looks_up_texels_ = false;
   // Per live path, the program still to run at its hit (null: none, or already run); one
   // program's hits at a time are gathered for evaluate_batch.
   std::array<const MaterialGraph*, kSize> programs_;

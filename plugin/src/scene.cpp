@@ -679,7 +679,9 @@ void Scene::intersect_stream(const Ray* const* rays, const uint8_t* camera, int 
 }
 
 void Scene::prefetch_triangle(const Hit& hit) const {
-  __builtin_prefetch(meshes_[hit.mesh].indices.data() + 3 * size_t(hit.triangle));
+  const StoredMesh& m = meshes_[hit.mesh];
+  __builtin_prefetch(m.indices.data() + 3 * size_t(hit.triangle));
+  if (!m.material_indices.empty()) __builtin_prefetch(m.material_indices.data() + hit.triangle);
 }
 
 void Scene::prefetch_vertices(const Hit& hit) const {

@@ -131,12 +131,13 @@ class Scene {
   // BVH for all of them together.
   static constexpr int kCameraPacket = 8;
   void intersect_camera_rays(const Ray* rays, int count, CameraHit* hits) const;
-  // Start loading what shading `hit` reads, for a batch of hits to shade after: the triangle's
-  // indices (stage 0), then, once those have arrived, its vertices' positions, normals and UVs
-  // and its corners' first UV map and tangents (stage 1). Only hints: nothing changes.
   // intersect() for `count` rays at once (one Embree stream query); camera[k] as its camera_ray.
   void intersect_stream(const Ray* const* rays, const uint8_t* camera, int count, Hit* hits,
                         uint8_t* found) const;
+  // Start loading what shading `hit` reads, for a batch of hits to shade after: the triangle's
+  // indices and material index (stage 0), then, once those have arrived, its vertices'
+  // positions, normals and UVs and its corners' first UV map and tangents (stage 1). Only
+  // hints: nothing changes.
   void prefetch_triangle(const Hit& hit) const;
   void prefetch_vertices(const Hit& hit) const;
   // The material index surface_point gives the hit.
