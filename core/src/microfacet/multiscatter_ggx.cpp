@@ -21,7 +21,11 @@ float cycles_fresnel_dielectric_cos(float cos_i, float eta) {
 
 RGB cycles_interpolate_fresnel(float cos_lh, float eta, const RGB& cspec0) {
   const float f0 = cycles_fresnel_dielectric_cos(1.0f, eta);
-  const float fh = (cycles_fresnel_dielectric_cos(cos_lh, eta) - f0) / (1.0f - f0);
+  return cycles_interpolate_fresnel_of(cycles_fresnel_dielectric_cos(cos_lh, eta), f0, cspec0);
+}
+
+RGB cycles_interpolate_fresnel_of(float fresnel, float f0, const RGB& cspec0) {
+  const float fh = (fresnel - f0) / (1.0f - f0);
   return cspec0 * (1.0f - fh) + RGB(fh);
 }
 

@@ -216,12 +216,11 @@ CyclesPrincipled::Closures CyclesPrincipled::closures(const Vec3& wo, bool back_
           microfacet::cycles_interpolate_fresnel(wo.z, c.eta, lobe.setup().cspec0).average());
     } else {
       const float fresnel = microfacet::cycles_fresnel_dielectric_cos(wo.z, c.eta);
-      // cycles_interpolate_fresnel at wo.z, from the Fresnel just computed and the side's F0
-      // (the kernel's): the same value without evaluating F twice more.
+      // Its sample weight, the interpolated Fresnel at wo.z, from the Fresnel just computed
+      // and the side's F0 (the kernel's), rather than evaluating F twice more.
       const float f0 = (back_face ? s_.kernel.glass_fresnel_back : s_.kernel.glass_fresnel_front).f0;
-      const float fh = (fresnel - f0) / (1.0f - f0);
       add(kGlassReflectionClosure, RGB(s_.final_transmission * fresnel),
-          (s_.glass_reflection.cspec0 * (1.0f - fh) + RGB(fh)).average());
+          microfacet::cycles_interpolate_fresnel_of(fresnel, f0, s_.glass_reflection.cspec0).average());
       add(kGlassRefractionClosure, s_.base * (s_.final_transmission * std::max(1e-4f, 1.0f - fresnel)),
           1.0f);
     }

@@ -133,6 +133,8 @@ struct WalkSample {
 float cycles_fresnel_dielectric_cos(float cos_i, float eta);
 // cspec0 (1 − FH) + FH with FH = (F(cos_lh) − F0)/(1 − F0), F0 = F(1).
 RGB cycles_interpolate_fresnel(float cos_lh, float eta, const RGB& cspec0);
+// The same from F(cos_lh) and F0 already at hand.
+RGB cycles_interpolate_fresnel_of(float fresnel, float f0, const RGB& cspec0);
 float cycles_ggx_albedo(float roughness);
 float cycles_ggx_transmission_albedo(float alpha, float ior);
 
