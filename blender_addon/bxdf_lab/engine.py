@@ -127,6 +127,8 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
             data = export.export_scene(depsgraph)
             for warning in data["warnings"]:
                 self._warn(report, warning)
+            if "warning" in data["camera"]:  # the viewport has its own camera: said only here
+                self._warn(report, data["camera"]["warning"])
             n_triangles = sum(len(m["triangles"]) for m in data["meshes"])
             export_seconds = time.perf_counter() - started
             self.update_stats("BxDF Lab", f"Exported {n_triangles} triangles, "

@@ -21,7 +21,8 @@ be tested, pickled, or handed to the renderer's binding unchanged.
                   # material rendered from its node tree: {"name", "graph"} (node_materials.py)
       "lights": [{"type", "name", "matrix", "position", "direction", "color", "power", ...}],
                   # light_export.py
-      "camera": {...}, "world": {"color", "texture", ...}  # world_export.py
+      "camera": {...},  # camera_dict; "warning" when the scene camera is not a camera object
+      "world": {"color", "texture", ...},  # world_export.py
       "resolution": (width, height), "film_transparent": bool,
       "warnings": [str],  # things exported approximately, each naming the world/light/material
     }
@@ -256,8 +257,35 @@ def resolution(scene):
             int(r.resolution_y * r.resolution_percentage / 100))
 
 
+# Cycles' camera for a scene camera that is not a camera object (blender_camera_init): Blender
+# lets any object be the scene camera, and Cycles then looks along its -Z with these settings.
+_DEFAULT_CAMERA = {"type": "persp", "lens": 50.0, "sensor_width": 36.0, "sensor_height": 24.0,
+                   "sensor_fit": "auto", "shift": (0.0, 0.0), "clip": (1e-5, 1e5), "ortho_scale": 1.0}
+# A light's spot size when Python cannot read it: Blender's default (the field lives in every
+# light's data, but only a spot light shows it).
+_DEFAULT_SPOT_SIZE = np.radians(45.0)
+
+
+def _object_camera(camera_obj):
+    """Cycles' camera through a non-camera object (blender_camera_from_object): the defaults, with
+    a light's spot size as the field of view (lens = 16 mm / tan(spot size / 2))."""
+    settings = dict(_DEFAULT_CAMERA)
+    how = "Cycles' default camera (50 mm lens, 36 mm sensor, automatic fit)"
+    if camera_obj.type == "LIGHT":
+        spot_size = float(getattr(camera_obj.data, "spot_size", _DEFAULT_SPOT_SIZE))
+        settings["lens"] = 16.0 / np.tan(0.5 * spot_size)
+        how = (f"a {settings['lens']:.1f} mm lens on a 36 mm sensor, the light's "
+               f"{'spot size' if camera_obj.data.type == 'SPOT' else 'default spot size'} "
+               f"of {np.degrees(spot_size):.0f}° as Cycles does")
+    settings["warning"] = (f"scene camera '{camera_obj.name}' is an object of type {camera_obj.type}, "
+                           f"not a camera: rendered through it with {how}")
+    return settings
+
+
 def camera_dict(scene, camera_obj):
-    """Blender's camera model: lens and sensor (with fit), shift, clip, resolution, aspect."""
+    """Blender's camera model: lens and sensor (with fit), shift, clip, resolution, aspect. A
+    scene camera that is not a camera object gives Cycles' camera through it, with a "warning"
+    that a render through it reports (the viewport has a camera of its own)."""
     width, height = resolution(scene)
     r = scene.render
     out = {"resolution": (width, height),
@@ -265,17 +293,16 @@ def camera_dict(scene, camera_obj):
     if camera_obj is None:
         out["missing"] = True
         return out
-    if camera_obj.type != "CAMERA":  # Blender lets any object be the scene's camera
-        raise ValueError(f"scene camera '{camera_obj.name}' is an object of type {camera_obj.type}; "
-                         "BxDF Lab renders through a camera object (type CAMERA)")
-    cam = camera_obj.data
     matrix = _matrix(camera_obj.matrix_world)
     # Blender ignores scale for the view; the renderer wants an orthonormal frame.
     for axis in range(3):
         matrix[:3, axis] /= max(np.linalg.norm(matrix[:3, axis]), 1e-30)
+    out.update({"name": camera_obj.name, "matrix": matrix})  # camera looks along -Z, +Y up
+    if camera_obj.type != "CAMERA":
+        out.update(_object_camera(camera_obj))
+        return out
+    cam = camera_obj.data
     out.update({
-        "name": camera_obj.name,
-        "matrix": matrix,  # camera looks along -Z, +Y up
         "type": cam.type.lower(),
         "lens": float(cam.lens),  # mm
         "sensor_width": float(cam.sensor_width),

@@ -259,10 +259,14 @@ def test_camera_resolution_and_world(scene):
     assert data["warnings"] == []
 
 
-def test_an_object_that_is_not_a_camera_as_the_scene_camera_is_refused_by_name(scene):
+def test_an_object_that_is_not_a_camera_as_the_scene_camera_gives_cycles_default_camera(scene):
     scene.camera = bpy.data.objects["instancer"]
-    with pytest.raises(ValueError, match="scene camera 'instancer' is an object of type EMPTY"):
-        _export()
+    data = _export()
+    camera = data["camera"]
+    assert (camera["lens"], camera["sensor_width"], camera["sensor_fit"]) == (50.0, 36.0, "auto")
+    np.testing.assert_allclose(camera["matrix"][:3, 3], (5, 0, 0))
+    assert "scene camera 'instancer' is an object of type EMPTY" in camera["warning"]
+    assert data["warnings"] == []  # the viewport, which shares the export, has its own camera
 
 
 def test_an_unsupported_world_texture_becomes_the_socket_default_with_a_warning(scene):

@@ -320,3 +320,24 @@ def test_a_broken_material_is_reported_in_the_viewport(scene, material):
     assert session.job is None and "sigma" in engine.stats
     report = render_report.last("viewport")
     assert report.naming(material.name) and "sigma" in report.errors[0]
+
+
+def test_a_free_view_renders_when_the_scene_camera_is_not_a_camera_object(scene):
+    # Blender lets any object be the scene camera; the viewport has its own camera, so it renders
+    # and says nothing of the scene camera (an F12 render names it: test_camera_cycles.py).
+    empty = bpy.data.objects.new("viewpoint", None)
+    scene.collection.objects.link(empty)
+    view, window = _camera_view(scene, scene.camera, 16, 16)  # a view that happens to sit there
+    scene.camera = empty
+    engine = StandInEngine()
+    session = viewport.ViewportSession(display=RecordingDisplay(), start_timer=False)
+    context = _context(scene, 16, 16, view, window)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    session.update(context, depsgraph, [])
+    session.draw(context, depsgraph, engine)
+    assert session.job is not None
+    _wait(session.job)
+    assert session.job.error == "" and session.job.image.mean() > 0.0
+    report = render_report.last("viewport")
+    assert report.errors == [] and report.warnings == []
+    session.stop()
