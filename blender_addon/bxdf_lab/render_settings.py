@@ -14,11 +14,6 @@ class BXDFLAB_PG_render_settings(bpy.types.PropertyGroup):
                                   description="Samples per pixel of the viewport's Rendered mode "
                                               "(refined pass by pass)",
                                   default=32, min=1, soft_max=1024, max=1 << 16)
-    viewport_pixel_size: EnumProperty(
-        name="Viewport Pixel Size", default="2",
-        description="Rendered-mode pixels per rendered sample pixel: larger is faster and coarser",
-        items=[("1", "1×", "Full resolution"), ("2", "2×", "Half resolution"),
-               ("4", "4×", "Quarter resolution"), ("8", "8×", "An eighth of the resolution")])
     max_bounces: IntProperty(name="Max Bounces",
                              description="Longest path; 0 = direct light only", default=8, min=0,
                              max=1024, soft_max=64)

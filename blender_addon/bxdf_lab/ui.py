@@ -198,8 +198,8 @@ class BXDFLAB_PT_material_cycles(MaterialPanel, bpy.types.Panel):
             wrapped_labels(layout, f"{settings.cycles_label}: {settings.cycles_mapping}", width)
 
 
-RENDER_SETTINGS = ("samples", "preview_samples", "viewport_samples", "viewport_pixel_size",
-                   "max_bounces", "pixel_filter", "filter_width", "threads", "seed")
+RENDER_SETTINGS = ("samples", "preview_samples", "viewport_samples", "max_bounces", "pixel_filter",
+                   "filter_width", "threads", "seed")
 
 
 class BXDFLAB_PT_render(bpy.types.Panel):
@@ -221,6 +221,8 @@ class BXDFLAB_PT_render(bpy.types.Panel):
             if name == "filter_width" and settings.pixel_filter == "PIXEL_CENTER":
                 continue
             layout.prop(settings, name)
+            if name == "viewport_samples":  # Blender's own setting, which Cycles' viewport reads too
+                layout.prop(context.scene.render, "preview_pixel_size", text="Viewport Pixel Size")
         if hasattr(context.scene, "cycles"):  # the Light Paths settings both renderers read
             layout.prop(context.scene.cycles, "min_light_bounces")
             layout.prop(context.scene.cycles, "transparent_max_bounces")

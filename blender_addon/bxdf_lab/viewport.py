@@ -210,6 +210,16 @@ class GPUDisplay:
         gpu.state.blend_set("NONE")
 
 
+def preview_pixel_size(scene):
+    """Viewport pixels per rendered pixel: Blender's own Viewport Pixel Size (Render Properties ›
+    Performance in Cycles), read as Blender reads it for every engine (BKE_render_preview_pixel_size):
+    Automatic is 2 on a high-DPI interface and 1 otherwise."""
+    setting = scene.render.preview_pixel_size
+    if setting == "AUTO":
+        return 2 if bpy.context.preferences.system.pixel_size > 1.5 else 1
+    return int(setting)
+
+
 def _draw_rect(pixels, width, height, region):
     """Where an image of the view's `pixels` (renderer.border_pixels', or None for all of the
     `width`×`height` view) lies in the region: (x, y, width, height) in the region's pixels from
@@ -281,7 +291,7 @@ class ViewportSession:
         if self.data is None:
             return
         settings = scene.bxdf_lab_render
-        pixel_size = int(settings.viewport_pixel_size)
+        pixel_size = preview_pixel_size(scene)
         width, height = max(1, region.width // pixel_size), max(1, region.height // pixel_size)
         region_data = context.region_data
         render_settings = renderer.settings_dict(settings, "viewport",

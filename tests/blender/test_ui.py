@@ -98,7 +98,7 @@ def test_parameters_whose_condition_fails_are_hidden():
 def test_render_panel_draws_the_settings():
     context = type("Context", (), {"scene": bpy.context.scene})()
     drawn = [e[1] for e in _draw(ui.BXDFLAB_PT_render, context) if e[0] == "prop"]
-    assert drawn == ["samples", "preview_samples", "viewport_samples", "viewport_pixel_size",
+    assert drawn == ["samples", "preview_samples", "viewport_samples", "preview_pixel_size",
                      "max_bounces", "pixel_filter", "filter_width", "threads", "seed",
                      "min_light_bounces", "transparent_max_bounces"]  # Cycles', read by both
 

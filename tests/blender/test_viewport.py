@@ -75,7 +75,8 @@ def scene(material):
     scene.camera = camera
     scene.render.engine = "BXDF_LAB"
     s = scene.bxdf_lab_render
-    s.viewport_samples, s.viewport_pixel_size, s.max_bounces, s.seed = 4, "1", 2, 3
+    s.viewport_samples, s.max_bounces, s.seed = 4, 2, 3
+    scene.render.preview_pixel_size = "1"
     s.pixel_filter = "PIXEL_CENTER"
     return scene
 
@@ -299,6 +300,15 @@ def test_a_border_covers_at_least_one_pixel_inside_the_view():
     assert renderer.border_pixels((0.0, 0.0, 1.0, 1.0), 40, 20) == (0, 0, 40, 20)
     assert renderer.border_pixels((0.5, 0.5, 0.5, 0.5), 40, 20) == (20, 9, 21, 10)
     assert renderer.border_pixels((1.0, 1.0, 1.0, 1.0), 40, 20) == (39, 0, 40, 1)
+
+
+def test_the_pixel_size_is_blenders_viewport_pixel_size_as_cycles_reads_it():
+    scene = bpy.context.scene
+    assert scene.render.preview_pixel_size == "AUTO"  # Blender's default, as for Cycles
+    assert bpy.context.preferences.system.pixel_size < 1.5 and viewport.preview_pixel_size(scene) == 1
+    for setting, size in (("1", 1), ("2", 2), ("4", 4), ("8", 8)):
+        scene.render.preview_pixel_size = setting
+        assert viewport.preview_pixel_size(scene) == size
 
 
 def test_the_drawn_rectangle_stretches_with_the_pixel_size():
