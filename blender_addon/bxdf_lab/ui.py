@@ -15,12 +15,14 @@ ENGINE = BXDFLAB_RenderEngine.bl_idname
 
 # Average width of a character of the UI font at scale 1, in pixels: how much text fits a line.
 CHAR_WIDTH = 7.0
+LABEL_INSET = 80.0  # px at UI scale 1 (a 222 px region leaves ~140 px of text in a box)
 
 
 def wrapped_labels(layout, text, width, icon="NONE"):
     """`text` as labels that fit `width` pixels (Blender cuts a long label with "…")."""
     scale = bpy.context.preferences.view.ui_scale if bpy.context.preferences else 1.0
-    chars = max(20, int(width / (CHAR_WIDTH * scale)) - 4)
+    # The label's own width: the region less the panel's and a box's margins and the icon.
+    chars = max(12, int((width - LABEL_INSET * scale) / (CHAR_WIDTH * scale)))
     column = layout.column(align=True)
     for i, line in enumerate(textwrap.wrap(text, chars) or [""]):
         column.label(text=line, icon=icon if i == 0 else "BLANK1")
