@@ -112,7 +112,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
   if (has_callback && partial_images) {
     callbacks.on_pass = [&](const render::Film& film, const render::RenderProgress& p) {
       // The last pass's image is the result.
-      if (p.pass >= p.passes) return;
+      if (p.samples_done >= settings.samples_per_pixel) return;
       std::vector<float> rgba(static_cast<size_t>(film.width()) *
                               static_cast<size_t>(film.height()) * 4);
       film.rgba(rgba.data());
@@ -269,7 +269,10 @@ for the partial images too.
 (8; 0 = direct light only), ``pixel_filter`` ("box", "gaussian", "blackman_harris" or
 "pixel_center", any case; Blackman-Harris, Cycles' default), ``filter_width`` (1.5 px),
 ``threads`` (0 = all cores), ``seed`` (0), ``tile_size`` (16), ``samples_per_pass`` (0 =
-automatic: about samples/8, at most 16, with partial images, else one pass), ``russian_roulette_depth`` (1: paths may be ended at random once they have
+automatic: about samples/8, at most 16, with partial images, else one pass), ``progressive``
+(False: True sizes the passes by time as Cycles' viewport does, one sample first and then as many
+as fit its display interval: 0.1 s in the first second, growing to 2 s; ``samples_per_pass``
+must then be 0), ``russian_roulette_depth`` (1: paths may be ended at random once they have
 scattered this many + 1 times; Cycles' Min Light Bounces + 1), ``transparent_max_bounces`` (8:
 Cycles' setting; passes through Transparent BSDFs are not bounces, and the surface after this
 many + 1 passes adds only its emission), ``transparent_background`` (False), ``region``

@@ -695,7 +695,7 @@ void apply_render_settings(const py::handle& settings, render::RenderSettings& s
   const py::dict d = as_dict(settings, root);
   static const char* const kKnown =
       "'samples', 'max_bounces', 'pixel_filter', 'filter_width', 'threads', 'seed', 'tile_size', "
-      "'samples_per_pass', 'russian_roulette_depth', 'transparent_max_bounces', "
+      "'samples_per_pass', 'progressive', 'russian_roulette_depth', 'transparent_max_bounces', "
       "'transparent_background', 'region'";
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
@@ -710,9 +710,9 @@ void apply_render_settings(const py::handle& settings, render::RenderSettings& s
     else if (key == "tile_size") s.tile_size = static_cast<int>(integer(v, path, 1, 4096));
     else if (key == "samples_per_pass") s.samples_per_pass = static_cast<int>(integer(v, path, 0, 1 << 24));
     else if (key == "filter_width") s.filter_width = static_cast<float>(number(v, path, 1e-6, 16.0, "(0, 16] pixels"));
-    else if (key == "transparent_background") {
+    else if (key == "transparent_background" || key == "progressive") {
       if (!PyBool_Check(v.ptr())) refuse(path, short_repr(v) + " is not a bool; expected True or False");
-      s.transparent_background = v.cast<bool>();
+      (key == "progressive" ? s.progressive : s.transparent_background) = v.cast<bool>();
     } else if (key == "region") {
       // Checked against the image's size where the render starts (render::rendered_rect).
       if (v.is_none()) {

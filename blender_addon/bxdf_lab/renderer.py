@@ -28,8 +28,8 @@ def binding():
 
 
 # What each kind of render takes from scene.bxdf_lab_render: a final render all of it; the
-# material preview and the viewport their own sample count, fewer bounces, and one sample per pass
-# so that the first image comes at once and each pass refines it.
+# material preview and the viewport their own sample count, fewer bounces, and passes that start
+# with one sample so that the first image comes at once and each pass refines it.
 PURPOSES = ("final", "preview", "viewport")
 QUICK_MAX_BOUNCES = 4
 # Cycles' defaults of the Light Paths settings BxDF Lab reads too, for a scene without Cycles'.
@@ -64,7 +64,7 @@ def settings_dict(render_settings, purpose="final", light_paths=None):
     if purpose != "final":
         settings["samples"] = s.preview_samples if purpose == "preview" else s.viewport_samples
         settings["max_bounces"] = min(s.max_bounces, QUICK_MAX_BOUNCES)
-        settings["samples_per_pass"] = 1
+        settings["progressive"] = True  # one sample first, then passes sized as Cycles' viewport sizes them
     return settings
 
 

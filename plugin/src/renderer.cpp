@@ -15,6 +15,7 @@
 
 #include "bxdf/params.h"
 #include "path_batch.h"
+#include "progressive_pass.h"
 #include "sampler/path_sampler.h"
 
 namespace bxdf::render {
@@ -37,6 +38,8 @@ void check_settings(const RenderSettings& s) {
   if (s.threads < 0) bad("threads", s.threads, "[0, inf) (0 = all cores)");
   if (s.tile_size < 1 || s.tile_size > 4096) bad("tile_size", s.tile_size, "[1, 4096]");
   if (s.samples_per_pass < 0) bad("samples_per_pass", s.samples_per_pass, "[0, inf)");
+  if (s.progressive && s.samples_per_pass > 0)
+    bad("samples_per_pass", s.samples_per_pass, "0 with progressive passes (they size themselves)");
 }
 
 // Automatic passes take about an eighth of the samples, but no more than this many, so that a
@@ -103,11 +106,11 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
       settings.samples_per_pass > 0 ? std::min(settings.samples_per_pass, spp)
       : callbacks.on_pass           ? std::clamp((spp + 7) / 8, 1, kMaxAutoSamplesPerPass)
                                     : spp;
-  const int passes = (spp + per_pass - 1) / per_pass;
+  const int passes = settings.progressive ? 0 : (spp + per_pass - 1) / per_pass;
 
   RenderProgress progress;
   progress.passes = passes;
-  progress.tiles_total = static_cast<uint64_t>(passes) * tiles.size();
+  progress.tiles_total = static_cast<uint64_t>(settings.progressive ? spp : passes) * tiles.size();
   std::mutex progress_mutex;
   std::atomic<bool> stop{false};
   std::atomic<uint64_t> rays{0}, shadow_rays{0}, rejected{0}, camera_samples{0};
@@ -190,9 +193,11 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   // tile already takes.
   double busy_seconds = 0.0, busy_cpu_seconds = 0.0;
   arena.execute([&] {
-    for (int pass = 0; pass < passes && !cancelled(); ++pass) {
-      const int first = pass * per_pass;
-      const int count = std::min(per_pass, spp - first);
+    for (int pass = 0, first = 0; first < spp && !cancelled(); ++pass) {
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const int count = settings.progressive ? progressive_pass_samples(elapsed, first, spp - first)
+                                             : std::min(per_pass, spp - first);
       tbb::parallel_for(
           tbb::blocked_range<size_t>(0, tiles.size(), 1),
           [&](const tbb::blocked_range<size_t>& range) {
@@ -207,13 +212,14 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
               std::lock_guard<std::mutex> lock(progress_mutex);  // one callback at a time
               busy_seconds += wall;
               busy_cpu_seconds += cpu;
-              ++progress.tiles_done;
+              progress.tiles_done += settings.progressive ? uint64_t(count) : 1u;
               if (callbacks.on_tile && !callbacks.on_tile(progress)) stop = true;
             }
           },
           tbb::simple_partitioner());
       if (cancelled()) break;
-      completed_spp = first + count;
+      first += count;
+      completed_spp = first;
       progress.pass = pass + 1;
       progress.samples_done = completed_spp;
       if (callbacks.on_pass) callbacks.on_pass(film, progress);

@@ -14,6 +14,7 @@
 #include "bxdf/registry.h"
 #include "bxdf/render/renderer.h"
 #include "bxdf/render/shapes.h"
+#include "progressive_pass.h"
 #include "bxdf/rng.h"
 
 using namespace bxdf;
@@ -220,6 +221,60 @@ TEST(Renderer, OnePassWithoutPartialImagesAndCancelInsideATile) {
   EXPECT_EQ(stats.samples_per_pixel, 0);
   EXPECT_GT(stats.camera_samples, 0u);
   EXPECT_LT(stats.camera_samples, 24u * 20u * (1u << 14) / 4);
+}
+
+// Progressive passes (a viewport's): one sample first, then passes sized to Cycles' display
+// interval for the time rendered; the same bits as one pass, and every tile-sample counted.
+TEST(Renderer, ProgressivePassesStartWithOneSampleAndKeepTheImage) {
+  EXPECT_EQ(progressive_pass_samples(0.0, 0, 64), 1);
+  EXPECT_EQ(progressive_pass_samples(0.05, 1, 64), 2);    // 0.05 s a sample: two fit 0.1 s
+  EXPECT_EQ(progressive_pass_samples(0.5, 1, 64), 1);     // at least one
+  EXPECT_EQ(progressive_pass_samples(1.5, 32, 64), 5);    // 0.047 s a sample, 0.25 s from 1 s on
+  EXPECT_EQ(progressive_pass_samples(3.0, 60, 4), 4);     // 0.5 s from 2 s on, but only 4 remain
+  EXPECT_EQ(progressive_pass_samples(3.0, 60, 64), 10);   // 0.5 s at 0.05 s a sample
+  EXPECT_EQ(progressive_pass_samples(9.0, 96, 1000), 21); // 2 s past 8 s and 32 samples
+  EXPECT_DOUBLE_EQ(display_update_interval(9.0, 31), 1.0);
+
+  SmallScene sc;
+  RenderSettings s = small_settings();
+  s.samples_per_pixel = 40;
+  s.threads = 2;
+  const CameraSettings camera = camera_at(Vec3(0, -5, 1), Vec3(0, 0, 0));
+  const std::vector<float> one_pass = render_scene(sc.scene, camera, s).rgba();
+  s.progressive = true;
+  std::vector<int> pass_samples;
+  uint64_t tiles_done = 0, tiles_total = 0;
+  RenderCallbacks cb;
+  cb.on_tile = [&](const RenderProgress& p) {
+    tiles_done = p.tiles_done;
+    tiles_total = p.tiles_total;
+    return true;
+  };
+  cb.on_pass = [&](const Film& film, const RenderProgress& p) {
+    EXPECT_EQ(p.passes, 0);  // not known ahead
+    pass_samples.push_back(p.samples_done);
+    EXPECT_EQ(film.samples(0, 0), static_cast<uint32_t>(p.samples_done));
+  };
+  RenderStats stats;
+  const std::vector<float> progressive = render_scene(sc.scene, camera, s, cb, &stats).rgba();
+  EXPECT_EQ(progressive, one_pass);  // bit for bit
+  ASSERT_GE(pass_samples.size(), 2u);
+  EXPECT_EQ(pass_samples.front(), 1);
+  EXPECT_EQ(pass_samples.back(), 40);
+  // A 24 x 20 image renders in well under 0.1 s a sample: the second pass takes the rest.
+  EXPECT_LT(pass_samples.size(), 10u);
+  EXPECT_EQ(tiles_total, 40u * 9u);
+  EXPECT_EQ(tiles_done, tiles_total);
+  EXPECT_EQ(stats.samples_per_pixel, 40);
+
+  // Passes that size themselves cannot also be given a size.
+  s.samples_per_pass = 4;
+  try {
+    render_scene(sc.scene, camera, s);
+    ADD_FAILURE() << "progressive passes with samples_per_pass 4 were not refused";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("samples_per_pass"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Renderer, RefusesBadSettingsByName) {

@@ -610,6 +610,8 @@ BAD_SETTINGS = [
                                r"y_max <= height 24 \(rows from the top\)"),
     ({"region": (0, 0, 25, 8)}, r"render setting 'region' is \(0, 0, 25, 8\)"),
     ([1, 2], r"settings: is a list; expected a dict"),
+    ({"progressive": 1}, r"settings\['progressive'\]: 1 is not a bool; expected True or False"),
+    ({"progressive": True, "samples_per_pass": 2}, r"samples_per_pass.*2.*0 with progressive passes"),
 ]
 
 
@@ -617,6 +619,24 @@ BAD_SETTINGS = [
 def test_bad_settings_name_the_field(settings, message):
     with pytest.raises(ValueError, match=message):
         bxdf.render(good_scene(), settings)
+
+
+def test_progressive_passes_start_with_one_sample_and_give_the_same_image():
+    # The viewport's passes: a partial image after the first sample, then passes sized by time
+    # (0.1 s at first); tile progress counts tile-samples and ends at its total.
+    material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.5}}
+    settings = dict(BIG, samples=16, tile_size=8)
+    del settings["samples_per_pass"]
+    expected = bxdf.render(scene_dict(material), settings)
+    calls = []
+    image, stats = bxdf.render(scene_dict(material), dict(settings, progressive=True),
+                               lambda done, total, img: calls.append((done, total, img)),
+                               return_stats=True)
+    np.testing.assert_array_equal(image, expected)
+    assert stats["samples_per_pixel"] == 16
+    partial = [img for _, _, img in calls if img is not None]
+    assert 1 <= len(partial) < 15  # not a pass per sample
+    assert {total for _, total, _ in calls} == {16 * 9} and calls[-1][0] == 16 * 9
 
 
 def test_a_region_renders_its_pixels_as_the_whole_image_does():

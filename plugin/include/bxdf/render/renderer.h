@@ -41,13 +41,19 @@ struct RenderSettings {
   // 0 = about spp/8, at most 16, when RenderCallbacks::on_pass is set (its partial images),
   // else all samples in one pass.
   int samples_per_pass = 0;
+  // Passes sized by time instead (samples_per_pass 0), as Cycles sizes its viewport's updates
+  // (progressive_pass.h): one sample first, then as many as fit the display interval for the
+  // time rendered so far. A viewport's first image comes at once and the later ones do not cost
+  // a pass (and a partial image) per sample.
+  bool progressive = false;
   bool transparent_background = false;  // alpha = coverage instead of 1
 };
 
 struct RenderProgress {
-  int pass = 0, passes = 0;      // passes finished / total
+  int pass = 0, passes = 0;      // passes finished / total (progressive: 0, not known ahead)
   int samples_done = 0;          // per pixel, in finished passes
   // Over the whole render; 64-bit, as passes x tiles passes 2^31 at the largest spp and size.
+  // With progressive passes, tile-samples (a tile of a pass of k samples counts k).
   uint64_t tiles_done = 0, tiles_total = 0;
   double fraction() const { return tiles_total ? double(tiles_done) / tiles_total : 0.0; }
 };
