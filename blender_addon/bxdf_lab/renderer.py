@@ -28,10 +28,11 @@ def binding():
 
 
 # What each kind of render takes from scene.bxdf_lab_render: a final render all of it; the
-# material preview and the viewport their own sample count, fewer bounces, and passes that start
-# with one sample so that the first image comes at once and each pass refines it.
+# material preview and the viewport their own sample count, and passes that start with one sample
+# so that the first image comes at once and each pass refines it. The viewport shows what F12
+# renders (all the bounces, as Cycles' viewport); the material preview's small scene needs fewer.
 PURPOSES = ("final", "preview", "viewport")
-QUICK_MAX_BOUNCES = 4
+PREVIEW_MAX_BOUNCES = 4
 # Cycles' defaults of the Light Paths settings BxDF Lab reads too, for a scene without Cycles'.
 DEFAULT_TRANSPARENT_MAX_BOUNCES = 8
 DEFAULT_MIN_LIGHT_BOUNCES = 0
@@ -63,7 +64,8 @@ def settings_dict(render_settings, purpose="final", light_paths=None):
                 "threads": s.threads, "seed": s.seed}
     if purpose != "final":
         settings["samples"] = s.preview_samples if purpose == "preview" else s.viewport_samples
-        settings["max_bounces"] = min(s.max_bounces, QUICK_MAX_BOUNCES)
+        if purpose == "preview":
+            settings["max_bounces"] = min(s.max_bounces, PREVIEW_MAX_BOUNCES)
         settings["progressive"] = True  # one sample first, then passes sized as Cycles' viewport sizes them
     return settings
 

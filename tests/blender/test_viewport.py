@@ -304,6 +304,19 @@ def test_a_border_covers_at_least_one_pixel_inside_the_view():
     assert renderer.border_pixels((1.0, 1.0, 1.0, 1.0), 40, 20) == (39, 0, 40, 1)
 
 
+def test_the_view_renders_with_f12s_bounces_in_passes_that_size_themselves(scene):
+    # As Cycles' viewport: the Light Paths of F12 (glass seen through the view is F12's glass);
+    # only the material preview's small scene is cut to fewer bounces.
+    s = scene.bxdf_lab_render
+    s.max_bounces = 12
+    final = renderer.settings_dict(s, "final")
+    view = renderer.settings_dict(s, "viewport")
+    assert view["max_bounces"] == final["max_bounces"] == 12
+    assert view["samples"] == s.viewport_samples and view["progressive"]
+    assert renderer.settings_dict(s, "preview")["max_bounces"] == renderer.PREVIEW_MAX_BOUNCES < 12
+    assert "progressive" not in final  # F12's passes are for its partial results (engine.py)
+
+
 def test_the_pixel_size_is_blenders_viewport_pixel_size_as_cycles_reads_it():
     scene = bpy.context.scene
     assert scene.render.preview_pixel_size == "AUTO"  # Blender's default, as for Cycles
