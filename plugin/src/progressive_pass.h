@@ -25,8 +25,7 @@ inline int progressive_pass_samples(double elapsed, int samples_done, int remain
   if (samples_done <= 0 || !(elapsed > 0.0)) return std::min(1, remaining);
   const double seconds_per_sample = elapsed / samples_done;
   const double fit = display_update_interval(elapsed, samples_done) / seconds_per_sample;
-  const int samples = fit < double(remaining) ? std::max(int(fit), 1) : remaining;
-  return std::min(samples, remaining);
+  return fit < double(remaining) ? std::max(int(fit), 1) : remaining;
 }
 
 }  // namespace bxdf::render

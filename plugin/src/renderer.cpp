@@ -106,11 +106,13 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
       settings.samples_per_pass > 0 ? std::min(settings.samples_per_pass, spp)
       : callbacks.on_pass           ? std::clamp((spp + 7) / 8, 1, kMaxAutoSamplesPerPass)
                                     : spp;
-  const int passes = settings.progressive ? 0 : (spp + per_pass - 1) / per_pass;
+  // Progressive passes, like the others, only where partial images are shown.
+  const bool progressive = settings.progressive && callbacks.on_pass;
+  const int passes = progressive ? 0 : (spp + per_pass - 1) / per_pass;
 
   RenderProgress progress;
   progress.passes = passes;
-  progress.tiles_total = static_cast<uint64_t>(settings.progressive ? spp : passes) * tiles.size();
+  progress.tiles_total = static_cast<uint64_t>(progressive ? spp : passes) * tiles.size();
   std::mutex progress_mutex;
   std::atomic<bool> stop{false};
   std::atomic<uint64_t> rays{0}, shadow_rays{0}, rejected{0}, camera_samples{0};
@@ -196,8 +198,8 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
     for (int pass = 0, first = 0; first < spp && !cancelled(); ++pass) {
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const int count = settings.progressive ? progressive_pass_samples(elapsed, first, spp - first)
-                                             : std::min(per_pass, spp - first);
+      const int count = progressive ? progressive_pass_samples(elapsed, first, spp - first)
+                                    : std::min(per_pass, spp - first);
       tbb::parallel_for(
           tbb::blocked_range<size_t>(0, tiles.size(), 1),
           [&](const tbb::blocked_range<size_t>& range) {
@@ -212,7 +214,7 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
               std::lock_guard<std::mutex> lock(progress_mutex);  // one callback at a time
               busy_seconds += wall;
               busy_cpu_seconds += cpu;
-              progress.tiles_done += settings.progressive ? uint64_t(count) : 1u;
+              progress.tiles_done += progressive ? uint64_t(count) : 1u;
               if (callbacks.on_tile && !callbacks.on_tile(progress)) stop = true;
             }
           },

@@ -267,6 +267,16 @@ TEST(Renderer, ProgressivePassesStartWithOneSampleAndKeepTheImage) {
   EXPECT_EQ(tiles_done, tiles_total);
   EXPECT_EQ(stats.samples_per_pixel, 40);
 
+  // Without partial images to show, one pass as ever.
+  uint64_t total_without_images = 0;
+  RenderCallbacks tiles_only;
+  tiles_only.on_tile = [&](const RenderProgress& p) {
+    total_without_images = p.tiles_total;
+    return true;
+  };
+  EXPECT_EQ(render_scene(sc.scene, camera, s, tiles_only).rgba(), one_pass);
+  EXPECT_EQ(total_without_images, 9u);
+
   // Passes that size themselves cannot also be given a size.
   s.samples_per_pass = 4;
   try {

@@ -41,10 +41,10 @@ struct RenderSettings {
   // 0 = about spp/8, at most 16, when RenderCallbacks::on_pass is set (its partial images),
   // else all samples in one pass.
   int samples_per_pass = 0;
-  // Passes sized by time instead (samples_per_pass 0), as Cycles sizes its viewport's updates
-  // (progressive_pass.h): one sample first, then as many as fit the display interval for the
-  // time rendered so far. A viewport's first image comes at once and the later ones do not cost
-  // a pass (and a partial image) per sample.
+  // Passes sized by time instead (samples_per_pass 0), when RenderCallbacks::on_pass is set, as
+  // Cycles sizes its viewport's updates (progressive_pass.h): one sample first, then as many as
+  // fit the display interval for the time rendered so far. A viewport's first image comes at once
+  // and the later ones do not cost a pass (and a partial image) per sample.
   bool progressive = false;
   bool transparent_background = false;  // alpha = coverage instead of 1
 };
