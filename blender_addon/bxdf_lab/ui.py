@@ -98,8 +98,9 @@ def draw_last_renders(layout, width, material=None):
         if material is not None and not messages:
             continue
         box = layout.box()
-        box.label(text=f"{title} ({report.scene}): {report.summary}" if report.summary
-                  else f"{title} ({report.scene})", icon="RENDER_RESULT")
+        # The summary (size, samples, times) is as long as a warning: wrapped, not cut.
+        wrapped_labels(box, f"{title} ({report.scene}): {report.summary}" if report.summary
+                       else f"{title} ({report.scene})", width, icon="RENDER_RESULT")
         for level, text in messages:
             col = box.column()
             col.alert = level == "ERROR"
