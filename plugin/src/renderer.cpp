@@ -195,11 +195,13 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   // tile already takes.
   double busy_seconds = 0.0, busy_cpu_seconds = 0.0;
   arena.execute([&] {
-    for (int pass = 0, first = 0; first < spp && !cancelled(); ++pass) {
+    // Each pass renders samples completed_spp.. of every pixel.
+    for (int pass = 0; completed_spp < spp && !cancelled(); ++pass) {
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const int count = progressive ? progressive_pass_samples(elapsed, first, spp - first)
-                                    : std::min(per_pass, spp - first);
+      const int remaining = spp - completed_spp;
+      const int count = progressive ? progressive_pass_samples(elapsed, completed_spp, remaining)
+                                    : std::min(per_pass, remaining);
       tbb::parallel_for(
           tbb::blocked_range<size_t>(0, tiles.size(), 1),
           [&](const tbb::blocked_range<size_t>& range) {
@@ -207,7 +209,7 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
               if (cancelled()) return;
               const auto tile_start = std::chrono::steady_clock::now();
               const double cpu_start = thread_cpu_seconds();
-              render_tile(tiles[t], first, count);
+              render_tile(tiles[t], completed_spp, count);
               const double cpu = thread_cpu_seconds() - cpu_start;
               const double wall =
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - tile_start).count();
@@ -220,8 +222,7 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
           },
           tbb::simple_partitioner());
       if (cancelled()) break;
-      first += count;
-      completed_spp = first;
+      completed_spp += count;
       progress.pass = pass + 1;
       progress.samples_done = completed_spp;
       if (callbacks.on_pass) callbacks.on_pass(film, progress);
