@@ -52,6 +52,9 @@ def parse_args():
                         "changed: a heavy-tailed error needs other seeds to be checked)")
     p.add_argument("--res", type=int, nargs=2, metavar=("W", "H"), default=None,
                    help="resolution (default: the scene's)")
+    p.add_argument("--adaptive", type=float, default=None, metavar="THRESHOLD",
+                   help="both engines with Cycles' Adaptive Sampling at this Noise Threshold "
+                        "(0 = automatic; minimum samples automatic); the references without")
     p.add_argument("--json", default=None, help="also write the results to this file")
     args = p.parse_args(argv)
     for name in ("threads", "reference_spp"):
@@ -110,9 +113,10 @@ def set_up_spec(spec, world_dir=None):
     return spec, labels
 
 
-def render(engine, spec, spp, seed, threads, path, cycles_pattern=None):
+def render(engine, spec, spp, seed, threads, path, cycles_pattern=None, adaptive=None):
     """Renders once; returns (seconds, CPU seconds of the whole process, HxWx3 linear image).
-    `cycles_pattern`: Cycles' sampling_pattern instead of the harness's (its default, PMJ)."""
+    `cycles_pattern`: Cycles' sampling_pattern instead of the harness's (its default, PMJ).
+    `adaptive`: Cycles' Adaptive Sampling on at this Noise Threshold, which both engines read."""
     import bpy
 
     from compare import driver, engine_setup, imageio
@@ -121,6 +125,11 @@ def render(engine, spec, spp, seed, threads, path, cycles_pattern=None):
     configure(spec, spp, seed, threads)
     if engine == "CYCLES" and cycles_pattern:
         bpy.context.scene.cycles.sampling_pattern = cycles_pattern
+    if adaptive is not None:
+        cycles = bpy.context.scene.cycles
+        cycles.use_adaptive_sampling = True
+        cycles.adaptive_threshold = adaptive
+        cycles.adaptive_min_samples = 0
     bpy.context.scene.render.filepath = path
     start, cpu_start = time.perf_counter(), time.process_time()
     bpy.ops.render.render(write_still=True)
@@ -182,7 +191,9 @@ def main():
     renders = ", ".join(f"{n} at {spp} spp (seeds {args.first_seed}-{args.first_seed + n - 1})"
                         for spp, n in zip(args.spp, args.repeats))
     print(f"side_by_side: scene {args.scene} ({width}x{height}, max_bounces {spec.max_bounces}), "
-          f"{args.threads} threads each, interleaved renders per engine: {renders}; reference = "
+          f"{args.threads} threads each, interleaved renders per engine: {renders}"
+          f"{'' if args.adaptive is None else f', adaptive sampling at noise threshold {args.adaptive}'}"
+          f"; reference = "
           f"mean of both engines at {args.reference_spp} spp; "
           f"materials: {', '.join(f'{k} {v}' for k, v in labels.items())}")
     rows = []
@@ -192,7 +203,8 @@ def main():
         mse = {e: [] for e in ENGINES}
         for r in range(args.first_seed, args.first_seed + repeats):
             for engine in ENGINES:
-                t, cpu, image = render(engine, spec, spp, r, args.threads, out(f"{engine}_{spp}_{r}"))
+                t, cpu, image = render(engine, spec, spp, r, args.threads, out(f"{engine}_{spp}_{r}"),
+                                       adaptive=args.adaptive)
                 seconds[engine].append(t)
                 cpu_seconds[engine].append(cpu)
                 mse[engine].append(float(np.mean((image - reference) ** 2)))
@@ -234,7 +246,7 @@ def main():
               f"{row['cpu_ratio']:>10.2f} {row['cpu_equal_error_ratio']:>16.2f}")
     if args.json:
         with open(args.json, "w", encoding="utf-8") as fh:
-            json.dump({"scene": args.scene, "threads": args.threads,
+            json.dump({"scene": args.scene, "threads": args.threads, "adaptive": args.adaptive,
                        "reference_spp": args.reference_spp, "rows": rows}, fh, indent=1)
     os.rmdir(work)
 

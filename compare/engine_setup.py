@@ -80,6 +80,10 @@ def configure_bxdf_lab(spec: SceneSpec, spp: int, seed: int, threads: int) -> di
     settings.pixel_filter = "GAUSSIAN"
     settings.filter_width = CYCLES_FILTER_WIDTH
     settings.threads = threads
+    # Cycles' Adaptive Sampling, which BXDF_LAB reads too (renderer.cycles_adaptive_sampling):
+    # off, as for Cycles, whichever engine the scene was set up for last.
+    if hasattr(scene, "cycles"):
+        scene.cycles.use_adaptive_sampling = False
     return {"samples": spp, "seed": seed, "max_bounces": spec.max_bounces,
             "filter": f"GAUSSIAN {CYCLES_FILTER_WIDTH}", "threads": threads}
 

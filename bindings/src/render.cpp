@@ -112,7 +112,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
   if (has_callback && partial_images) {
     callbacks.on_pass = [&](const render::Film& film, const render::RenderProgress& p) {
       // The last pass's image is the result.
-      if (p.samples_done >= settings.samples_per_pixel) return;
+      if (p.last) return;
       std::vector<float> rgba(static_cast<size_t>(film.width()) *
                               static_cast<size_t>(film.height()) * 4);
       film.rgba(rgba.data());
@@ -216,6 +216,7 @@ py::object run_render(const render::Scene& scene, const render::CameraSettings& 
   s["shadow_rays"] = stats.shadow_rays;
   s["rejected_samples"] = stats.rejected_samples;
   s["cancelled"] = stats.cancelled;
+  s["converged"] = stats.converged;
   py::list w;
   for (const auto& text : warnings) w.append(text);
   s["warnings"] = w;
@@ -278,7 +279,11 @@ Cycles' setting; passes through Transparent BSDFs are not bounces, and the surfa
 many + 1 passes adds only its emission), ``transparent_background`` (False), ``region``
 (None: Blender's Render Region, ``(x_min, y_min, x_max, y_max)`` pixels with rows counted from the
 top, maximum exclusive: only those pixels are rendered and the image is the region's size, each
-pixel as the whole image's render gives it).
+pixel as the whole image's render gives it), ``adaptive_sampling`` (False: True stops sampling
+each pixel once its noise is below the threshold, as Cycles' Adaptive Sampling),
+``adaptive_threshold`` (0.01, in [0, 1]; 0 = automatic, max(0.001, 1/samples); Cycles' Noise
+Threshold) and ``adaptive_min_samples`` (0 = automatic from the threshold: 64 at 0.01; at most
+4096; Cycles' Min Samples).
 
 ``on_progress(done, total, image)`` is called on the calling thread, holding the GIL, while the
 render runs on C++ threads: ``done``/``total`` count tiles over the whole render (reported at most
@@ -295,7 +300,8 @@ ValueError naming the field, e.g. ``scene['meshes'][2]['normal_indices']: index 
 
 With ``return_stats=True`` the result is ``(image, stats)``, stats a dict: ``seconds``,
 ``samples_per_pixel`` (completed), ``camera_samples``, ``rays``, ``shadow_rays``,
-``rejected_samples`` (NaN/Inf/negative radiance dropped), ``cancelled``, ``warnings`` (list of str:
+``rejected_samples`` (NaN/Inf/negative radiance dropped), ``cancelled``, ``converged``
+(adaptive sampling stopped every pixel before ``samples``), ``warnings`` (list of str:
 what was rendered approximately), ``triangles`` (as drawn), ``stored_triangles`` (an instanced mesh
 counted once) and ``instances`` (Embree instances), and for :func:`render` ``convert_seconds``
 (reading, welding and flattening the meshes), ``bvh_seconds`` (building Embree's BVH) and

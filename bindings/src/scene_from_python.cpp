@@ -696,7 +696,8 @@ void apply_render_settings(const py::handle& settings, render::RenderSettings& s
   static const char* const kKnown =
       "'samples', 'max_bounces', 'pixel_filter', 'filter_width', 'threads', 'seed', 'tile_size', "
       "'samples_per_pass', 'progressive', 'russian_roulette_depth', 'transparent_max_bounces', "
-      "'transparent_background', 'region'";
+      "'transparent_background', 'region', 'adaptive_sampling', 'adaptive_threshold', "
+      "'adaptive_min_samples'";
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
     const std::string path = root + "['" + key + "']";
@@ -710,9 +711,12 @@ void apply_render_settings(const py::handle& settings, render::RenderSettings& s
     else if (key == "tile_size") s.tile_size = static_cast<int>(integer(v, path, 1, 4096));
     else if (key == "samples_per_pass") s.samples_per_pass = static_cast<int>(integer(v, path, 0, 1 << 24));
     else if (key == "filter_width") s.filter_width = static_cast<float>(number(v, path, 1e-6, 16.0, "(0, 16] pixels"));
-    else if (key == "transparent_background" || key == "progressive") {
+    else if (key == "adaptive_threshold") s.adaptive_threshold = static_cast<float>(number(v, path, 0.0, 1.0, "[0, 1] (0 = automatic)"));
+    else if (key == "adaptive_min_samples") s.adaptive_min_samples = static_cast<int>(integer(v, path, 0, 4096));
+    else if (key == "transparent_background" || key == "progressive" || key == "adaptive_sampling") {
       if (!PyBool_Check(v.ptr())) refuse(path, short_repr(v) + " is not a bool; expected True or False");
-      (key == "progressive" ? s.progressive : s.transparent_background) = v.cast<bool>();
+      (key == "progressive" ? s.progressive
+       : key == "adaptive_sampling" ? s.adaptive_sampling : s.transparent_background) = v.cast<bool>();
     } else if (key == "region") {
       // Checked against the image's size where the render starts (render::rendered_rect).
       if (v.is_none()) {

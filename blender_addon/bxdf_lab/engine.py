@@ -155,7 +155,7 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
                 return not cancelled
 
             settings = renderer.settings_dict(scene.bxdf_lab_render, purpose,
-                                              renderer.cycles_light_paths(scene))
+                                              renderer.cycles_settings(scene, purpose))
             settings["region"] = region
             # Blender without a window (blender -b) shows no partial result: the passes' images
             # (a copy, a flip and foreach_set each, ~1 ms at 128², competing with the render
@@ -173,9 +173,9 @@ class BXDFLAB_RenderEngine(bpy.types.RenderEngine):
                 report.timings = _phase_seconds(export_seconds, stats,
                                                 time.perf_counter() - hand_back_started,
                                                 time.perf_counter() - started)
-                report.summary = (f"{width}×{height} pixels, {stats.get('samples_per_pixel', 0)} "
-                                  f"samples per pixel: export {export_seconds:.2f} s, render "
-                                  f"{stats.get('seconds', 0.0):.2f} s")
+                samples = renderer.samples_text(stats, image.shape[0] * image.shape[1])
+                report.summary = (f"{width}×{height} pixels, {samples}: export "
+                                  f"{export_seconds:.2f} s, render {stats.get('seconds', 0.0):.2f} s")
                 self.update_stats("BxDF Lab", report.summary)
         except Exception as exc:  # reported and recorded, never swallowed
             report.errors.append(f"{type(exc).__name__}: {exc}")

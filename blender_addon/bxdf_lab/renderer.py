@@ -51,15 +51,46 @@ def cycles_light_paths(scene):
     return {"transparent_max_bounces": transparent, "russian_roulette_depth": min_light + 1}
 
 
-def settings_dict(render_settings, purpose="final", light_paths=None):
-    """bxdf.render's settings from the add-on's render settings; `light_paths` is
-    cycles_light_paths(scene) (Cycles' defaults when None)."""
+# Cycles' Sampling settings (Render Properties > Sampling) BxDF Lab reads too: for F12 those of
+# Render, for the viewport those of Viewport (Cycles' preview_*), each with Cycles' default
+# where the scene has none. The material preview's small scene samples every pixel alike.
+CYCLES_ADAPTIVE_SAMPLING = {
+    "final": (("use_adaptive_sampling", True), ("adaptive_threshold", 0.01),
+              ("adaptive_min_samples", 0)),
+    "viewport": (("use_preview_adaptive_sampling", True), ("preview_adaptive_threshold", 0.1),
+                 ("preview_adaptive_min_samples", 0)),
+}
+
+
+def cycles_adaptive_sampling(scene, purpose="final"):
+    """bxdf.render's adaptive sampling settings from the scene's Cycles Adaptive Sampling
+    (Noise Threshold, Min Samples) for `purpose`; {} for the material preview."""
+    if purpose not in CYCLES_ADAPTIVE_SAMPLING:
+        return {}
+    cycles = getattr(scene, "cycles", None)
+    (use, use_default), (threshold, threshold_default), (minimum, minimum_default) = \
+        CYCLES_ADAPTIVE_SAMPLING[purpose]
+    return {"adaptive_sampling": bool(getattr(cycles, use, use_default)),
+            "adaptive_threshold": float(getattr(cycles, threshold, threshold_default)),
+            "adaptive_min_samples": int(getattr(cycles, minimum, minimum_default))}
+
+
+def cycles_settings(scene, purpose="final"):
+    """The Cycles settings of `scene` that bxdf.render reads for `purpose`: Light Paths and
+    Adaptive Sampling."""
+    return {**cycles_light_paths(scene), **cycles_adaptive_sampling(scene, purpose)}
+
+
+def settings_dict(render_settings, purpose="final", cycles=None):
+    """bxdf.render's settings from the add-on's render settings; `cycles` is
+    cycles_settings(scene, purpose) (without it, Cycles' default Light Paths and no adaptive
+    sampling)."""
     if purpose not in PURPOSES:
         raise ValueError(f"render purpose '{purpose}' is unknown; expected one of {PURPOSES}")
-    if light_paths is None:
-        light_paths = cycles_light_paths(None)
+    if cycles is None:
+        cycles = cycles_light_paths(None)
     s = render_settings
-    settings = {"samples": s.samples, "max_bounces": s.max_bounces, **light_paths,
+    settings = {"samples": s.samples, "max_bounces": s.max_bounces, **cycles,
                 "pixel_filter": s.pixel_filter.lower(), "filter_width": s.filter_width,
                 "threads": s.threads, "seed": s.seed}
     if purpose != "final":
@@ -68,6 +99,17 @@ def settings_dict(render_settings, purpose="final", light_paths=None):
             settings["max_bounces"] = min(s.max_bounces, PREVIEW_MAX_BOUNCES)
         settings["progressive"] = True  # one sample first, then passes sized as Cycles' viewport sizes them
     return settings
+
+
+def samples_text(stats, pixels):
+    """How many samples per pixel a render took, from bxdf.render's stats and the image's pixel
+    count: "64 samples per pixel", or where adaptive sampling stopped pixels early (its camera
+    samples fewer than samples_per_pixel on every pixel) "up to 256 samples per pixel (mean 97)"."""
+    most = int(stats.get("samples_per_pixel", 0))
+    camera_samples = int(stats.get("camera_samples", 0))
+    if pixels > 0 and camera_samples < most * pixels:
+        return f"up to {most} samples per pixel (mean {camera_samples / pixels:.0f})"
+    return f"{most} samples per pixel"
 
 
 def render_region(scene, width, height):

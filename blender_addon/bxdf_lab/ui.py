@@ -6,7 +6,7 @@ import textwrap
 
 import bpy
 
-from . import api, fit_report, node_panel, properties, render_report
+from . import api, fit_report, node_panel, properties, render_report, renderer
 from .engine import BXDFLAB_RenderEngine
 from .operators.presets import BXDFLAB_MT_presets
 
@@ -205,6 +205,27 @@ RENDER_SETTINGS = ("samples", "preview_samples", "viewport_samples", "max_bounce
                    "filter_width", "threads", "seed")
 
 
+# The sample counts that Cycles' adaptive sampling settings of a purpose go with
+# (renderer.CYCLES_ADAPTIVE_SAMPLING), drawn around them as Cycles' Sampling panel draws them.
+ADAPTIVE_SAMPLES = {"samples": "final", "viewport_samples": "viewport"}
+
+
+def draw_noise_threshold(layout, cycles, purpose):
+    (use, _), (threshold, _), _ = renderer.CYCLES_ADAPTIVE_SAMPLING[purpose]
+    row = layout.column(align=True, heading="Noise Threshold").row(align=True)
+    row.prop(cycles, use, text="")
+    sub = row.row()
+    sub.active = getattr(cycles, use)
+    sub.prop(cycles, threshold, text="")
+
+
+def draw_min_samples(layout, cycles, purpose):
+    (use, _), _, (minimum, _) = renderer.CYCLES_ADAPTIVE_SAMPLING[purpose]
+    row = layout.row()
+    row.active = getattr(cycles, use)
+    row.prop(cycles, minimum, text="Min Samples")
+
+
 class BXDFLAB_PT_render(bpy.types.Panel):
     bl_label = "BxDF Lab"
     bl_space_type = "PROPERTIES"
@@ -220,10 +241,16 @@ class BXDFLAB_PT_render(bpy.types.Panel):
         settings = context.scene.bxdf_lab_render
         layout = self.layout
         layout.use_property_split = True
+        cycles = getattr(context.scene, "cycles", None)
         for name in RENDER_SETTINGS:
             if name == "filter_width" and settings.pixel_filter == "PIXEL_CENTER":
                 continue
+            purpose = ADAPTIVE_SAMPLES.get(name)
+            if purpose and cycles is not None:  # Cycles' Noise Threshold, which both renderers read
+                draw_noise_threshold(layout, cycles, purpose)
             layout.prop(settings, name)
+            if purpose and cycles is not None:
+                draw_min_samples(layout, cycles, purpose)
             if name == "viewport_samples":  # Blender's own setting, which Cycles' viewport reads too
                 layout.prop(context.scene.render, "preview_pixel_size", text="Viewport Pixel Size")
         if hasattr(context.scene, "cycles"):  # the Light Paths settings both renderers read

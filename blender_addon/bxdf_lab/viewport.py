@@ -295,7 +295,7 @@ class ViewportSession:
         width, height = max(1, region.width // pixel_size), max(1, region.height // pixel_size)
         region_data = context.region_data
         render_settings = renderer.settings_dict(settings, "viewport",
-                                                 renderer.cycles_light_paths(scene))
+                                                 renderer.cycles_settings(scene, "viewport"))
         border = view_render_border(context.space_data, region_data, scene)
         pixels = renderer.border_pixels(border, width, height) if border is not None else None
         render_settings["region"] = pixels
@@ -352,7 +352,8 @@ class ViewportSession:
         if job.error:
             return f"BxDF Lab: {job.error}"
         if job.done:
-            return (f"BxDF Lab: {job.stats.get('samples_per_pixel', 0)} samples per pixel "
+            pixels = job.image.shape[0] * job.image.shape[1] if job.image is not None else 0
+            return (f"BxDF Lab: {renderer.samples_text(job.stats, pixels)} "
                     f"in {job.stats.get('seconds', 0.0):.1f} s")
         return f"BxDF Lab: rendering {100.0 * job.progress:.0f}%"
 

@@ -15,8 +15,14 @@ Film::Film(int width, int height) : width_(width), height_(height) {
   counts_.assign(n, 0u);
 }
 
+void Film::enable_adaptive() {
+  const size_t n = static_cast<size_t>(width_) * static_cast<size_t>(height_);
+  half_sums_.assign(3 * n, 0.0);
+  converged_.assign(n, 0u);
+}
+
 void Film::pixel(int x, int y, float rgba[4]) const {
-  const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x);
+  const size_t i = index(x, y);
   const double inv = counts_[i] ? 1.0 / counts_[i] : 0.0;
   for (int c = 0; c < 4; ++c) rgba[c] = static_cast<float>(sums_[4 * i + c] * inv);
 }

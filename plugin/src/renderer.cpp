@@ -14,6 +14,7 @@
 #include <string>
 
 #include "bxdf/params.h"
+#include "adaptive_sampling.h"
 #include "path_batch.h"
 #include "progressive_pass.h"
 #include "sampler/path_sampler.h"
@@ -40,6 +41,11 @@ void check_settings(const RenderSettings& s) {
   if (s.samples_per_pass < 0) bad("samples_per_pass", s.samples_per_pass, "[0, inf)");
   if (s.progressive && s.samples_per_pass > 0)
     bad("samples_per_pass", s.samples_per_pass, "0 with progressive passes (they size themselves)");
+  if (!(s.adaptive_threshold >= 0.0f && s.adaptive_threshold <= 1.0f))
+    throw ParameterError("render setting 'adaptive_threshold' is " +
+                         std::to_string(s.adaptive_threshold) + "; valid range [0, 1] (0 = automatic)");
+  if (s.adaptive_min_samples < 0 || s.adaptive_min_samples > 4096)
+    bad("adaptive_min_samples", s.adaptive_min_samples, "[0, 4096] (0 = automatic)");
 }
 
 // Automatic passes take about an eighth of the samples, but no more than this many, so that a
@@ -92,6 +98,8 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   integrator_settings.transparent_background = settings.transparent_background;
   const PathTracer tracer(scene, integrator_settings);
   Film film(rect.width(), rect.height());
+  const AdaptiveSampling adaptive = AdaptiveSampling::of(settings);
+  if (adaptive.use) film.enable_adaptive();
 
   std::vector<Tile> tiles;
   for (int y = rect.y0; y < rect.y1; y += settings.tile_size)
@@ -108,11 +116,14 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
                                     : spp;
   // Progressive passes, like the others, only where partial images are shown.
   const bool progressive = settings.progressive && callbacks.on_pass;
-  const int passes = progressive ? 0 : (spp + per_pass - 1) / per_pass;
+  // Progressive passes and adaptive sampling's (cut at its checks, and maybe ended early) are
+  // not known ahead: progress counts tile-samples instead of tiles.
+  const bool counts_samples = progressive || adaptive.use;
+  const int passes = counts_samples ? 0 : (spp + per_pass - 1) / per_pass;
 
   RenderProgress progress;
   progress.passes = passes;
-  progress.tiles_total = static_cast<uint64_t>(progressive ? spp : passes) * tiles.size();
+  progress.tiles_total = static_cast<uint64_t>(counts_samples ? spp : passes) * tiles.size();
   std::mutex progress_mutex;
   std::atomic<bool> stop{false};
   std::atomic<uint64_t> rays{0}, shadow_rays{0}, rejected{0}, camera_samples{0};
@@ -157,12 +168,15 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
         const PathBatch::Sample& c = batch.sample(k);
         const PathResult& r = batch.result(k);
         film.add_sample(c.x - rect.x0, c.y - rect.y0, r.radiance, std::max(r.alpha, background_alpha));
+        if (adaptive.use && sample_is_class_a(c.index))
+          film.add_half_sample(c.x - rect.x0, c.y - rect.y0, r.radiance);
       }
       samples += uint64_t(batch.size());
       batch.clear();
     };
     for (int y = tile.y0; y < tile.y1; ++y) {
       for (int x = tile.x0; x < tile.x1; ++x) {
+        if (film.converged(x - rect.x0, y - rect.y0)) continue;  // adaptive sampling stopped it
         // The pixel's samples are points first_sample.. of its own Sobol-Burley sequence: the
         // image depends on neither the thread count, the order of tiles nor the passes.
         const uint32_t pixel_seed =
@@ -194,14 +208,20 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   // The tiles' render times and their threads' CPU times, summed under the progress lock each
   // tile already takes.
   double busy_seconds = 0.0, busy_cpu_seconds = 0.0;
+  // Adaptive sampling's threshold now: where partial images are shown (the viewport), Cycles'
+  // progressive noise floor starts at 0.4 and halves, down to the setting's, each time every
+  // pixel has met it; a final render checks against the setting's from the start.
+  float noise_floor = progressive ? std::max(0.4f, adaptive.threshold) : adaptive.threshold;
+  bool converged = false;
   arena.execute([&] {
-    // Each pass renders samples completed_spp.. of every pixel.
-    for (int pass = 0; completed_spp < spp && !cancelled(); ++pass) {
+    // Each pass renders samples completed_spp.. of every pixel still sampled.
+    for (int pass = 0; completed_spp < spp && !converged && !cancelled(); ++pass) {
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const int remaining = spp - completed_spp;
-      const int count = progressive ? progressive_pass_samples(elapsed, completed_spp, remaining)
-                                    : std::min(per_pass, remaining);
+      const int count = adaptive.align_samples(
+          completed_spp, progressive ? progressive_pass_samples(elapsed, completed_spp, remaining)
+                                     : std::min(per_pass, remaining));
       tbb::parallel_for(
           tbb::blocked_range<size_t>(0, tiles.size(), 1),
           [&](const tbb::blocked_range<size_t>& range) {
@@ -216,15 +236,33 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
               std::lock_guard<std::mutex> lock(progress_mutex);  // one callback at a time
               busy_seconds += wall;
               busy_cpu_seconds += cpu;
-              progress.tiles_done += progressive ? uint64_t(count) : 1u;
+              progress.tiles_done += counts_samples ? uint64_t(count) : 1u;
               if (callbacks.on_tile && !callbacks.on_tile(progress)) stop = true;
             }
           },
           tbb::simple_partitioner());
       if (cancelled()) break;
       completed_spp += count;
+      if (adaptive.need_filter(completed_spp - 1)) {
+        bool reset = false;
+        while (update_converged_pixels(film, noise_floor, reset) == 0) {
+          if (!(noise_floor > adaptive.threshold)) {
+            converged = true;
+            break;
+          }
+          noise_floor = std::max(noise_floor * 0.5f, adaptive.threshold);
+          reset = true;  // every pixel judged again against the lower floor
+        }
+      }
       progress.pass = pass + 1;
       progress.samples_done = completed_spp;
+      progress.last = completed_spp >= spp || converged;
+      if (converged) {
+        // The samples no pixel needs count as done: the render is complete.
+        progress.tiles_done = progress.tiles_total;
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        if (callbacks.on_tile) callbacks.on_tile(progress);
+      }
       if (callbacks.on_pass) callbacks.on_pass(film, progress);
     }
   });
@@ -240,7 +278,8 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
     stats_out->tile_seconds = busy_seconds;
     stats_out->tile_cpu_seconds = busy_cpu_seconds;
     stats_out->threads = threads;
-    stats_out->cancelled = completed_spp < spp;
+    stats_out->cancelled = completed_spp < spp && !converged;
+    stats_out->converged = converged;
   }
   return film;
 }

@@ -612,6 +612,11 @@ BAD_SETTINGS = [
     ([1, 2], r"settings: is a list; expected a dict"),
     ({"progressive": 1}, r"settings\['progressive'\]: 1 is not a bool; expected True or False"),
     ({"progressive": True, "samples_per_pass": 2}, r"samples_per_pass.*2.*0 with progressive passes"),
+    ({"adaptive_sampling": "yes"}, r"settings\['adaptive_sampling'\]: 'yes' is not a bool"),
+    ({"adaptive_threshold": 1.5}, r"settings\['adaptive_threshold'\]: 1.5 is out of range; expected a "
+                                  r"number in \[0, 1\] \(0 = automatic\)"),
+    ({"adaptive_threshold": -0.01}, r"settings\['adaptive_threshold'\]"),
+    ({"adaptive_min_samples": 5000}, r"settings\['adaptive_min_samples'\]: 5000 is out of range"),
 ]
 
 
@@ -637,6 +642,36 @@ def test_progressive_passes_start_with_one_sample_and_give_the_same_image():
     partial = [img for _, _, img in calls if img is not None]
     assert 1 <= len(partial) < 15  # not a pass per sample
     assert {total for _, total, _ in calls} == {16 * 9} and calls[-1][0] == 16 * 9
+
+
+def test_adaptive_sampling_stops_converged_pixels_and_says_so():
+    # A grey world seen past a lit sphere: the world's pixels agree with their half means at
+    # once, the sphere's edge does not. Pixels still sampled at the end are the plain render's.
+    material = {"name": "m", "model": "lambertian", "params": {"reflectance": 0.5}}
+    scene = scene_dict(material)
+    scene["world"] = {"color": [0.2, 0.2, 0.2]}
+    settings = dict(BIG, samples=128, max_bounces=2, tile_size=8)
+    del settings["samples_per_pass"]
+    plain, plain_stats = bxdf.render(scene, settings, return_stats=True)
+    adaptive = dict(settings, adaptive_sampling=True, adaptive_threshold=0.02, adaptive_min_samples=16)
+    calls = []
+    image, stats = bxdf.render(scene, adaptive, lambda done, total, img: calls.append((done, total)),
+                               return_stats=True)
+    assert stats["camera_samples"] < plain_stats["camera_samples"]
+    assert not stats["cancelled"] and not plain_stats["converged"]
+    assert calls[-1][0] == calls[-1][1]  # progress ends complete, converged early or not
+    assert np.isfinite(image).all()
+    same = np.all(image == plain, axis=2)
+    assert same.any() and not same.all()
+    assert np.abs(image[..., :3] - plain[..., :3]).mean() < 0.02 * plain[..., :3].mean()
+    # A constant image stops every pixel at the first check, 64 + 1 | 15 = 79: 80 samples.
+    world_only = {"meshes": [], "materials": [], "lights": [], "camera": scene["camera"],
+                  "world": {"color": [0.3, 0.3, 0.3]}, "resolution": (SIZE, SIZE)}
+    image, stats = bxdf.render(world_only, dict(settings, samples=256, adaptive_sampling=True),
+                               return_stats=True)
+    assert stats["converged"] and not stats["cancelled"]
+    assert stats["samples_per_pixel"] == 80 and stats["camera_samples"] == 80 * SIZE * SIZE
+    np.testing.assert_allclose(image[..., :3], 0.3, rtol=1e-6)
 
 
 def test_a_region_renders_its_pixels_as_the_whole_image_does():

@@ -47,13 +47,22 @@ struct RenderSettings {
   // and the later ones do not cost a pass (and a partial image) per sample.
   bool progressive = false;
   bool transparent_background = false;  // alpha = coverage instead of 1
+  // Cycles' adaptive sampling (adaptive_sampling.h): pixels whose noise is below the threshold
+  // stop being sampled. Threshold 0 = automatic (max(0.001, 1/samples)); min samples 0 =
+  // automatic (from the threshold), as Cycles' Noise Threshold and Min Samples.
+  bool adaptive_sampling = false;
+  float adaptive_threshold = 0.01f;  // [0, 1]
+  int adaptive_min_samples = 0;      // [0, 4096]
 };
 
 struct RenderProgress {
-  int pass = 0, passes = 0;      // passes finished / total (progressive: 0, not known ahead)
+  int pass = 0, passes = 0;      // passes finished / total (0: not known ahead, progressive
+                                 // passes or adaptive sampling)
   int samples_done = 0;          // per pixel, in finished passes
+  bool last = false;             // on_pass: the render's last pass (its film is the result)
   // Over the whole render; 64-bit, as passes x tiles passes 2^31 at the largest spp and size.
-  // With progressive passes, tile-samples (a tile of a pass of k samples counts k).
+  // With progressive passes or adaptive sampling, tile-samples (a tile of a pass of k samples
+  // counts k).
   uint64_t tiles_done = 0, tiles_total = 0;
   double fraction() const { return tiles_total ? double(tiles_done) / tiles_total : 0.0; }
 };
@@ -73,8 +82,10 @@ struct RenderStats {
   uint64_t camera_samples = 0;
   uint64_t rays = 0, shadow_rays = 0;
   uint64_t rejected_samples = 0;  // NaN/Inf/negative radiance dropped
-  int samples_per_pixel = 0;      // completed (less than asked when cancelled)
+  int samples_per_pixel = 0;      // completed (less than asked when cancelled or converged)
   bool cancelled = false;
+  // Adaptive sampling stopped every pixel before the samples ran out.
+  bool converged = false;
   int threads = 0;                // the threads rendered on
   // Time the threads spent rendering tiles, summed: tile_seconds / (threads · seconds) is how
   // busy they were (the rest: waiting at the ends of passes, the set-up, other processes).
