@@ -48,6 +48,21 @@ bool pixel_converged(const Film& film, int x, int y, float threshold) {
   return difference / (0.0001f + normalize) < threshold;
 }
 
+// Along the line of n pixels from (x, y) in steps of (dx, dy): a stopped pixel next to a
+// sampled one is sampled again (one of Cycles' filter_x / filter_y passes).
+void keep_neighbours_sampled(Film& film, int x, int y, int dx, int dy, int n) {
+  bool prev = false;  // the previous pixel is sampled
+  for (int i = 0; i < n; ++i, x += dx, y += dy) {
+    if (!film.converged(x, y)) {
+      if (i > 0 && !prev) film.set_converged(x - dx, y - dy, false);
+      prev = true;
+    } else {
+      if (prev) film.set_converged(x, y, false);
+      prev = false;
+    }
+  }
+}
+
 }  // namespace
 
 uint64_t update_converged_pixels(Film& film, float threshold, bool reset) {
@@ -60,32 +75,10 @@ uint64_t update_converged_pixels(Film& film, float threshold, bool reset) {
   // A sampled pixel keeps its stopped neighbours sampled: along each row, then each column
   // (Cycles' filter_x, filter_y; the column pass sees the row pass's result).
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y != rows.end(); ++y) {
-      bool prev = false;
-      for (int x = 0; x < w; ++x) {
-        if (!film.converged(x, y)) {
-          if (x > 0 && !prev) film.set_converged(x - 1, y, false);
-          prev = true;
-        } else {
-          if (prev) film.set_converged(x, y, false);
-          prev = false;
-        }
-      }
-    }
+    for (int y = rows.begin(); y != rows.end(); ++y) keep_neighbours_sampled(film, 0, y, 1, 0, w);
   });
   tbb::parallel_for(tbb::blocked_range<int>(0, w), [&](const tbb::blocked_range<int>& columns) {
-    for (int x = columns.begin(); x != columns.end(); ++x) {
-      bool prev = false;
-      for (int y = 0; y < h; ++y) {
-        if (!film.converged(x, y)) {
-          if (y > 0 && !prev) film.set_converged(x, y - 1, false);
-          prev = true;
-        } else {
-          if (prev) film.set_converged(x, y, false);
-          prev = false;
-        }
-      }
-    }
+    for (int x = columns.begin(); x != columns.end(); ++x) keep_neighbours_sampled(film, x, 0, 0, 1, h);
   });
   return tbb::parallel_reduce(
       tbb::blocked_range<int>(0, h), uint64_t(0),

@@ -98,9 +98,14 @@ def test_parameters_whose_condition_fails_are_hidden():
 def test_render_panel_draws_the_settings():
     context = type("Context", (), {"scene": bpy.context.scene})()
     drawn = [e[1] for e in _draw(ui.BXDFLAB_PT_render, context) if e[0] == "prop"]
-    assert drawn == ["samples", "preview_samples", "viewport_samples", "preview_pixel_size",
+    # Cycles' Noise Threshold and Min Samples around each sample count, and its Light Paths
+    # settings at the end: read by both renderers.
+    assert drawn == ["use_adaptive_sampling", "adaptive_threshold", "samples", "adaptive_min_samples",
+                     "preview_samples",
+                     "use_preview_adaptive_sampling", "preview_adaptive_threshold", "viewport_samples",
+                     "preview_adaptive_min_samples", "preview_pixel_size",
                      "max_bounces", "pixel_filter", "filter_width", "threads", "seed",
-                     "min_light_bounces", "transparent_max_bounces"]  # Cycles', read by both
+                     "min_light_bounces", "transparent_max_bounces"]
 
 
 def _rna(group, name):
