@@ -90,4 +90,14 @@ uint64_t update_converged_pixels(Film& film, float threshold, bool reset) {
       [](uint64_t a, uint64_t b) { return a + b; });
 }
 
+bool ConvergenceChecks::all_converged(Film& film) {
+  bool reset = false;
+  while (update_converged_pixels(film, threshold_, reset) == 0) {
+    if (!(threshold_ > final_)) return true;
+    threshold_ = std::max(threshold_ * 0.5f, final_);
+    reset = true;  // every pixel judged again against the lower floor
+  }
+  return false;
+}
+
 }  // namespace bxdf::render

@@ -9,6 +9,7 @@
 // which is what the threshold trades against time (Cycles' Noise Threshold).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "bxdf/render/film.h"
@@ -46,5 +47,24 @@ inline bool sample_is_class_a(uint32_t sample) {
 // then lets each stopped pixel next to a sampled one (in its row, then its column) be sampled
 // again, as Cycles' filter_x and filter_y. Returns how many pixels are still sampled.
 uint64_t update_converged_pixels(Film& film, float threshold, bool reset);
+
+// The checks of one render (Cycles' RenderScheduler around them): each runs
+// update_converged_pixels at the current threshold. With the progressive noise floor (a render
+// that shows partial images: the viewport) the threshold starts at 0.4 and, each time every
+// pixel has met it, halves down to the setting's and every pixel is judged again; a final render
+// checks against the setting's threshold from the start.
+class ConvergenceChecks {
+ public:
+  ConvergenceChecks(const AdaptiveSampling& adaptive, bool progressive_noise_floor)
+      : final_(adaptive.threshold),
+        threshold_(progressive_noise_floor ? std::max(0.4f, adaptive.threshold) : adaptive.threshold) {}
+  // Runs a check on `film`; true when every pixel has stopped at the setting's threshold (the
+  // render is done).
+  bool all_converged(Film& film);
+  float threshold() const { return threshold_; }
+
+ private:
+  float final_, threshold_;
+};
 
 }  // namespace bxdf::render

@@ -208,10 +208,8 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
   // The tiles' render times and their threads' CPU times, summed under the progress lock each
   // tile already takes.
   double busy_seconds = 0.0, busy_cpu_seconds = 0.0;
-  // Adaptive sampling's threshold now: where partial images are shown (the viewport), Cycles'
-  // progressive noise floor starts at 0.4 and halves, down to the setting's, each time every
-  // pixel has met it; a final render checks against the setting's from the start.
-  float noise_floor = progressive ? std::max(0.4f, adaptive.threshold) : adaptive.threshold;
+  // Where partial images are shown (the viewport), with Cycles' progressive noise floor.
+  ConvergenceChecks checks(adaptive, progressive);
   bool converged = false;
   arena.execute([&] {
     // Each pass renders samples completed_spp.. of every pixel still sampled.
@@ -243,17 +241,7 @@ Film render_scene(const Scene& scene, const CameraSettings& camera_settings,
           tbb::simple_partitioner());
       if (cancelled()) break;
       completed_spp += count;
-      if (adaptive.need_filter(completed_spp - 1)) {
-        bool reset = false;
-        while (update_converged_pixels(film, noise_floor, reset) == 0) {
-          if (!(noise_floor > adaptive.threshold)) {
-            converged = true;
-            break;
-          }
-          noise_floor = std::max(noise_floor * 0.5f, adaptive.threshold);
-          reset = true;  // every pixel judged again against the lower floor
-        }
-      }
+      converged = adaptive.need_filter(completed_spp - 1) && checks.all_converged(film);
       progress.pass = pass + 1;
       progress.samples_done = completed_spp;
       progress.last = completed_spp >= spp || converged;

@@ -1,7 +1,7 @@
 // Adaptive sampling as Cycles does it: its automatic threshold and minimum, when the check runs,
-// the convergence test and the neighbours' dilation on a film made by hand, and renders where
-// pixels stop (still sampled pixels keep the plain render's bits; a constant image stops at the
-// first check).
+// the convergence test, the neighbours' dilation and the viewport's noise floor on films made by
+// hand, and renders where pixels stop (still sampled pixels keep the plain render's bits; a
+// constant image stops at the first check).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -119,6 +119,62 @@ TEST(AdaptiveSampling, ConvergenceTestAndNeighbourDilation) {
   EXPECT_EQ(update_converged_pixels(film, 0.0f, false), 0u);
   // The other pixels: no difference, so any threshold above 0 stops them.
   EXPECT_EQ(update_converged_pixels(film, 1e-6f, true), 9u);
+}
+
+namespace {
+
+// A 5x5 film of 16 samples per pixel, each pixel's mean 1 and its half mean 1 + d(x, y): its
+// error is 3 |d| / (0.0001 + √3) (the convergence test on three equal channels).
+Film film_with_differences(float centre_difference) {
+  Film film(5, 5);
+  film.enable_adaptive();
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 5; ++x) {
+      const float d = x == 2 && y == 2 ? centre_difference : 0.0f;
+      for (uint32_t s = 0; s < 16; ++s) {
+        film.add_sample(x, y, RGB(1.0f), 1.0f);
+        // The class-A samples (8 of 16), twice each, sum to 16 (1 + d).
+        if (sample_is_class_a(s)) film.add_half_sample(x, y, RGB(1.0f + d));
+      }
+    }
+  return film;
+}
+
+float error_of(float difference) { return 3.0f * difference / (0.0001f + std::sqrt(3.0f)); }
+
+}  // namespace
+
+TEST(AdaptiveSampling, TheViewportsNoiseFloorHalvesUntilAPixelFailsIt) {
+  AdaptiveSampling adaptive;
+  adaptive.use = true;
+  adaptive.threshold = 0.05f;  // Noise Threshold 0.01
+  // The centre's error 0.15: it meets 0.4 and 0.2 but not 0.1.
+  const float d = 0.15f / error_of(1.0f);
+  {
+    Film film = film_with_differences(d);
+    ConvergenceChecks viewport(adaptive, true);
+    EXPECT_FLOAT_EQ(viewport.threshold(), 0.4f);
+    EXPECT_FALSE(viewport.all_converged(film));
+    EXPECT_FLOAT_EQ(viewport.threshold(), 0.1f);  // 0.4 and 0.2 met by all, then judged again
+    EXPECT_FALSE(film.converged(2, 2));
+    EXPECT_FALSE(film.converged(1, 2));  // its neighbours go on with it
+    EXPECT_TRUE(film.converged(0, 0));
+  }
+  {
+    // A final render judges against 0.05 at once.
+    Film film = film_with_differences(d);
+    ConvergenceChecks final_render(adaptive, false);
+    EXPECT_FLOAT_EQ(final_render.threshold(), 0.05f);
+    EXPECT_FALSE(final_render.all_converged(film));
+    EXPECT_FLOAT_EQ(final_render.threshold(), 0.05f);
+  }
+  {
+    // Error 0.03, below every floor: the viewport goes down to 0.05 in one check and is done.
+    Film film = film_with_differences(0.03f / error_of(1.0f));
+    ConvergenceChecks viewport(adaptive, true);
+    EXPECT_TRUE(viewport.all_converged(film));
+    EXPECT_FLOAT_EQ(viewport.threshold(), 0.05f);
+  }
 }
 
 TEST(AdaptiveSampling, AConstantImageStopsAtTheFirstCheck) {
