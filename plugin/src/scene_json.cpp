@@ -143,7 +143,8 @@ void read_render_settings(const Reader& r, const json& j, RenderSettings& s) {
   const std::string path = "render";
   r.object(j, path);
   r.only_keys(j, path, {"width", "height", "spp", "max_bounces", "filter", "filter_width", "seed",
-                        "tile_size", "transparent_max_bounces", "transparent_background", "region"});
+                        "tile_size", "transparent_max_bounces", "transparent_background", "region",
+                        "adaptive_sampling", "adaptive_threshold", "adaptive_min_samples"});
   if (j.contains("width")) s.width = r.integer_in(j["width"], "render.width", 1, 65536, "[1, 65536]");
   if (j.contains("height"))
     s.height = r.integer_in(j["height"], "render.height", 1, 65536, "[1, 65536]");
@@ -174,6 +175,17 @@ void read_render_settings(const Reader& r, const json& j, RenderSettings& s) {
       r.fail("render.transparent_background", "true or false", j["transparent_background"]);
     s.transparent_background = j["transparent_background"].get<bool>();
   }
+  if (j.contains("adaptive_sampling")) {
+    if (!j["adaptive_sampling"].is_boolean())
+      r.fail("render.adaptive_sampling", "true or false", j["adaptive_sampling"]);
+    s.adaptive_sampling = j["adaptive_sampling"].get<bool>();
+  }
+  if (j.contains("adaptive_threshold"))
+    s.adaptive_threshold = static_cast<float>(r.number_in(
+        j["adaptive_threshold"], "render.adaptive_threshold", 0.0, 1.0, "[0, 1] (0 = automatic)"));
+  if (j.contains("adaptive_min_samples"))
+    s.adaptive_min_samples = r.integer_in(j["adaptive_min_samples"], "render.adaptive_min_samples",
+                                          0, 4096, "[0, 4096] (0 = automatic)");
   if (j.contains("region")) {
     // Blender's Render Region in pixels, rows from the top; whether it lies inside the image is
     // checked at render time, against the size the render gets (the CLI may change it).

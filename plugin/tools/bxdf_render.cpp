@@ -122,7 +122,11 @@ int main(int argc, char** argv) {
   callbacks.cancel = &g_cancel;
   if (!opt.quiet) {
     callbacks.on_pass = [](const Film&, const RenderProgress& p) {
-      std::fprintf(stderr, "\rbxdf-render: pass %d/%d (%d spp)", p.pass, p.passes, p.samples_done);
+      // Adaptive sampling's passes are not known ahead (passes 0).
+      if (p.passes > 0)
+        std::fprintf(stderr, "\rbxdf-render: pass %d/%d (%d spp)", p.pass, p.passes, p.samples_done);
+      else
+        std::fprintf(stderr, "\rbxdf-render: pass %d (%d spp)", p.pass, p.samples_done);
       std::fflush(stderr);
     };
   }
@@ -150,6 +154,10 @@ int main(int argc, char** argv) {
     std::cerr << "bxdf-render: " << e.what() << "\n";
     return 2;
   }
+  if (stats.converged)
+    std::printf("adaptive sampling: every pixel stopped by %d spp, a mean of %.1f\n",
+                stats.samples_per_pixel,
+                double(stats.camera_samples) / (double(film.width()) * double(film.height())));
   const double rays = static_cast<double>(stats.rays + stats.shadow_rays);
   std::printf("%s: %dx%d, %d spp, %.3f s, %.3g samples/s, %.3g rays/s, %llu rejected samples\n",
               opt.output.c_str(), film.width(), film.height(), stats.samples_per_pixel,

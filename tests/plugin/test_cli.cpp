@@ -150,6 +150,23 @@ TEST_F(CLI, ARegionRendersItsPixelsAsTheWholeImageHasThem) {
   EXPECT_FALSE(fs::exists(path("outside.exr")));
 }
 
+TEST_F(CLI, AdaptiveSamplingFromTheFileStopsPixelsAndSaysSo) {
+  // The good scene at 256 spp with the loosest threshold, 1: its automatic minimum is 16
+  // samples, and at the first check (after 32) every pixel has stopped.
+  write("floor.obj", kFloorObj);
+  write("floor.mtl", kFloorMtl);
+  std::string text = kGoodScene;
+  const std::string spp = "\"spp\": 4";
+  text.replace(text.find(spp), spp.size(),
+               "\"spp\": 256, \"adaptive_sampling\": true, \"adaptive_threshold\": 1");
+  const std::string scene = write("adaptive.json", text);
+  const RunResult r = run(scene + " -o " + path("adaptive.exr") + " --threads 2 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("adaptive sampling: every pixel stopped by 32 spp, a mean of 32.0"),
+            std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(path("adaptive.exr")));
+}
+
 struct BadCase {
   const char* name;
   std::string text;                    // the scene file
@@ -199,6 +216,13 @@ TEST_F(CLI, EachKindOfBadSceneFailsWithItsMessage) {
        {"render.region", "[x_min, y_min, x_max, y_max]"}},
       {"region_bound", replace("\"spp\": 4", "\"spp\": 4, \"region\": [0, -1, 8, 8]"),
        {"render.region[1]", "[0, 65536]"}},
+      {"adaptive_threshold", replace("\"spp\": 4", "\"spp\": 4, \"adaptive_threshold\": 2"),
+       {"render.adaptive_threshold", "[0, 1]"}},
+      {"adaptive_min_samples",
+       replace("\"spp\": 4", "\"spp\": 4, \"adaptive_min_samples\": -1"),
+       {"render.adaptive_min_samples", "[0, 4096]"}},
+      {"adaptive_sampling", replace("\"spp\": 4", "\"spp\": 4, \"adaptive_sampling\": 1"),
+       {"render.adaptive_sampling", "true or false"}},
   };
   // Every case through the reader the CLI uses (a process start costs ~0.5 s here, as OIIO
   // loads its codecs), and a few through the CLI itself for the exit code and the message.
