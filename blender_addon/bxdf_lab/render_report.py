@@ -42,13 +42,23 @@ class Report:
 
 
 _last = {}
+# How many reports have been recorded: a panel that shows them redraws when it changes
+# (ui.redraw_after_new_report).
+_recorded = 0
 
 
 def record(report):
     """Replaces the last report of `report.kind`."""
+    global _recorded
     if report.kind not in KINDS:
         raise ValueError(f"render report kind '{report.kind}' is unknown; expected one of {KINDS}")
     _last[report.kind] = report
+    _recorded += 1
+
+
+def recorded():
+    """How many reports have been recorded since the add-on was loaded."""
+    return _recorded
 
 
 def last(kind):

@@ -107,6 +107,27 @@ def draw_last_renders(layout, width, material=None):
             wrapped_labels(col, text, width, icon="ERROR" if level == "ERROR" else "INFO")
 
 
+# An F12 render records its report on the render thread, where tagging areas for redraw is not
+# safe, so the Render tab kept showing the previous render until the mouse passed over it. A
+# main-thread timer redraws the Properties editors (the Render and Material tabs show the
+# reports) when a new report has been recorded.
+REPORT_REDRAW_INTERVAL = 0.5
+_reports_drawn = 0
+
+
+def redraw_after_new_report():
+    """bpy.app.timers callback: tags every Properties editor for redraw after a new report."""
+    global _reports_drawn
+    recorded = render_report.recorded()
+    if recorded != _reports_drawn:
+        _reports_drawn = recorded
+        for window in bpy.context.window_manager.windows:
+            for area in window.screen.areas:
+                if area.type == "PROPERTIES":
+                    area.tag_redraw()
+    return REPORT_REDRAW_INTERVAL
+
+
 def draw_fit_report(layout, material):
     """The last "Fit to Measured File" of this material and its error, flagged once the
     parameters have been edited (the error then no longer describes them)."""
@@ -282,9 +303,13 @@ def register():
         bpy.utils.register_class(cls)
     for panel in _stock_panels():
         panel.COMPAT_ENGINES.add(ENGINE)
+    bpy.app.timers.register(redraw_after_new_report, first_interval=REPORT_REDRAW_INTERVAL,
+                            persistent=True)
 
 
 def unregister():
+    if bpy.app.timers.is_registered(redraw_after_new_report):
+        bpy.app.timers.unregister(redraw_after_new_report)
     for panel in _stock_panels():
         panel.COMPAT_ENGINES.discard(ENGINE)
     for cls in reversed(classes):

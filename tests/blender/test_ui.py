@@ -176,3 +176,19 @@ def test_the_last_render_report_is_shown_in_both_tabs(material):
         assert "'Lamp'" not in material_tab  # only what names this material
     finally:
         render_report.clear()
+
+
+def test_a_new_report_redraws_the_properties_editors():
+    # F12 records its report on the render thread; a main-thread timer notices it and tags the
+    # Properties editors (which show it) for redraw, once per new report.
+    from bxdf_lab import render_report
+    assert bpy.app.timers.is_registered(ui.redraw_after_new_report)
+    assert ui.redraw_after_new_report() == ui.REPORT_REDRAW_INTERVAL
+    seen = render_report.recorded()
+    render_report.record(render_report.Report("render", "Scene", summary="done"))
+    try:
+        assert render_report.recorded() == seen + 1
+        assert ui.redraw_after_new_report() == ui.REPORT_REDRAW_INTERVAL
+        assert ui._reports_drawn == seen + 1  # caught up: the next call tags nothing
+    finally:
+        render_report.clear()
