@@ -32,7 +32,6 @@ class Film {
 
   // Allocates the half sums and the stopped flags (all pixels sampled).
   void enable_adaptive();
-  bool adaptive() const { return !half_sums_.empty(); }
   // Adds a class-A sample's radiance, twice, to the half sum (after add_sample).
   void add_half_sample(int x, int y, const RGB& radiance) {
     double* a = &half_sums_[3 * index(x, y)];
