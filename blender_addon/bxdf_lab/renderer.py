@@ -52,14 +52,15 @@ def cycles_light_paths(scene):
 
 
 # Cycles' Sampling settings (Render Properties > Sampling) BxDF Lab reads too: for F12 those of
-# Render, for the viewport those of Viewport (Cycles' preview_*), each with Cycles' default
-# where the scene has none. The material preview's small scene samples every pixel alike.
+# Render, for the viewport those of Viewport (Cycles' preview_*): the properties' names (use,
+# Noise Threshold, Min Samples) and Cycles' defaults for a scene without them. The material
+# preview's small scene samples every pixel alike.
 CYCLES_ADAPTIVE_SAMPLING = {
-    "final": (("use_adaptive_sampling", True), ("adaptive_threshold", 0.01),
-              ("adaptive_min_samples", 0)),
-    "viewport": (("use_preview_adaptive_sampling", True), ("preview_adaptive_threshold", 0.1),
-                 ("preview_adaptive_min_samples", 0)),
+    "final": ("use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples"),
+    "viewport": ("use_preview_adaptive_sampling", "preview_adaptive_threshold",
+                 "preview_adaptive_min_samples"),
 }
+CYCLES_ADAPTIVE_DEFAULTS = {"final": (True, 0.01, 0), "viewport": (True, 0.1, 0)}
 
 
 def cycles_adaptive_sampling(scene, purpose="final"):
@@ -68,11 +69,10 @@ def cycles_adaptive_sampling(scene, purpose="final"):
     if purpose not in CYCLES_ADAPTIVE_SAMPLING:
         return {}
     cycles = getattr(scene, "cycles", None)
-    (use, use_default), (threshold, threshold_default), (minimum, minimum_default) = \
-        CYCLES_ADAPTIVE_SAMPLING[purpose]
-    return {"adaptive_sampling": bool(getattr(cycles, use, use_default)),
-            "adaptive_threshold": float(getattr(cycles, threshold, threshold_default)),
-            "adaptive_min_samples": int(getattr(cycles, minimum, minimum_default))}
+    use, threshold, minimum = (getattr(cycles, name, default) for name, default in
+                               zip(CYCLES_ADAPTIVE_SAMPLING[purpose], CYCLES_ADAPTIVE_DEFAULTS[purpose]))
+    return {"adaptive_sampling": bool(use), "adaptive_threshold": float(threshold),
+            "adaptive_min_samples": int(minimum)}
 
 
 def cycles_settings(scene, purpose="final"):

@@ -232,7 +232,7 @@ ADAPTIVE_SAMPLES = {"samples": "final", "viewport_samples": "viewport"}
 
 
 def draw_noise_threshold(layout, cycles, purpose):
-    (use, _), (threshold, _), _ = renderer.CYCLES_ADAPTIVE_SAMPLING[purpose]
+    use, threshold, _ = renderer.CYCLES_ADAPTIVE_SAMPLING[purpose]
     row = layout.column(align=True, heading="Noise Threshold").row(align=True)
     row.prop(cycles, use, text="")
     sub = row.row()
@@ -241,7 +241,7 @@ def draw_noise_threshold(layout, cycles, purpose):
 
 
 def draw_min_samples(layout, cycles, purpose):
-    (use, _), _, (minimum, _) = renderer.CYCLES_ADAPTIVE_SAMPLING[purpose]
+    use, _, minimum = renderer.CYCLES_ADAPTIVE_SAMPLING[purpose]
     row = layout.row()
     row.active = getattr(cycles, use)
     row.prop(cycles, minimum, text="Min Samples")
