@@ -13,7 +13,11 @@
 # FIRST_SEED (0: seeds 0..REPEATS-1) and REFERENCE_SPP (1024) the side by side's renders per
 # engine, their seeds and the references' samples (a heavy-tailed error repeats with the seeds; a
 # 1024-sample reference is not converged against 256-sample renders everywhere:
-# sweep_principled_multiscatter's two references differ by an MSE as large).
+# sweep_principled_multiscatter's two references differ by an MSE as large). SPP ("64 256") the
+# sample counts, and ADAPTIVE (a Noise Threshold; unset: off) both engines with Cycles' Adaptive
+# Sampling, e.g. the thirty-second session's table in docs/performance-history.md:
+#   SPP="256 1024" REPEATS="4 2" FIRST_SEED=200 REFERENCE_SPP=4096 ADAPTIVE=0.01 \
+#     bash bench/final_figures.sh
 set -euo pipefail
 BUILD=${1:-build}
 cd "$(dirname "$0")/.."
@@ -26,9 +30,10 @@ print(' '.join(n for n, f in scenes.SCENES.items() if f().max_bounces > 0))")}
 for scene in $SCENES; do
   echo
   BXDF_PYTHONPATH="$(pwd)/$BUILD/python" blender -b --factory-startup --python-exit-code 1 \
-    --python bench/side_by_side.py -- --scene "$scene" --spp 64 256 --threads 2 \
+    --python bench/side_by_side.py -- --scene "$scene" --spp ${SPP:-64 256} --threads 2 \
     --reference-spp "${REFERENCE_SPP:-1024}" --repeats ${REPEATS:-96 24} \
-    --first-seed "${FIRST_SEED:-0}" --json "$OUT/side_by_side_$scene.json" 2>&1 \
+    --first-seed "${FIRST_SEED:-0}" ${ADAPTIVE:+--adaptive "$ADAPTIVE"} \
+    --json "$OUT/side_by_side_$scene.json" 2>&1 \
     | grep -E '^(side_by_side|  *spp| +[0-9]+ )' || echo "final_figures: side_by_side failed on $scene"
 done
 echo
