@@ -24,7 +24,7 @@ namespace bxdf::render {
 namespace {
 
 void check_settings(const RenderSettings& s) {
-  const auto bad = [](const std::string& name, long long v, const std::string& range) {
+  const auto bad = [](const std::string& name, auto v, const std::string& range) {
     throw ParameterError("render setting '" + name + "' is " + std::to_string(v) +
                          "; valid range " + range);
   };
@@ -42,8 +42,7 @@ void check_settings(const RenderSettings& s) {
   if (s.progressive && s.samples_per_pass > 0)
     bad("samples_per_pass", s.samples_per_pass, "0 with progressive passes (they size themselves)");
   if (!(s.adaptive_threshold >= 0.0f && s.adaptive_threshold <= 1.0f))
-    throw ParameterError("render setting 'adaptive_threshold' is " +
-                         std::to_string(s.adaptive_threshold) + "; valid range [0, 1] (0 = automatic)");
+    bad("adaptive_threshold", s.adaptive_threshold, "[0, 1] (0 = automatic)");
   if (s.adaptive_min_samples < 0 || s.adaptive_min_samples > 4096)
     bad("adaptive_min_samples", s.adaptive_min_samples, "[0, 4096] (0 = automatic)");
 }
