@@ -274,9 +274,9 @@ class BXDFLAB_PT_render(bpy.types.Panel):
                 draw_min_samples(layout, cycles, purpose)
             if name == "viewport_samples":  # Blender's own setting, which Cycles' viewport reads too
                 layout.prop(context.scene.render, "preview_pixel_size", text="Viewport Pixel Size")
-        if hasattr(context.scene, "cycles"):  # the Light Paths settings both renderers read
-            layout.prop(context.scene.cycles, "min_light_bounces")
-            layout.prop(context.scene.cycles, "transparent_max_bounces")
+        if cycles is not None:  # the Light Paths settings both renderers read
+            layout.prop(cycles, "min_light_bounces")
+            layout.prop(cycles, "transparent_max_bounces")
         row = layout.row(align=True)
         row.operator("bxdf_lab.compare_renders", icon="IMAGE_REFERENCE")
         row.operator("bxdf_lab.open_compare_report", text="", icon="URL")
