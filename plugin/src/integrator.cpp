@@ -86,7 +86,10 @@ RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const B
   // Made in place (initialised by the call, not assigned from a temporary): copying the
   // returned sample read it back in 16-byte pieces over the callee's 4-byte stores, a
   // store-forwarding stall that perf annotate put at ~20% of this function's samples.
-  LightSample ls = light ? sample_light(*light, sp.p, Point2(u1, u2)) : world_light_sample(u1, u2);
+  const Point2 u_light(u1, u2);
+  LightSample ls = !light                          ? world_light_sample(u1, u2)
+                   : light->type == LightType::Mesh ? sample_mesh_light(*light, sp.p, u_light)
+                                                    : sample_light(*light, sp.p, u_light);
   if (light) {
     if (ls.triangle >= 0 && ls.pdf > 0.0f && light->triangles[size_t(ls.triangle)].textured) {
       // Textured emission: the material's emission where the sample landed, seen from here.

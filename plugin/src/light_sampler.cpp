@@ -168,6 +168,12 @@ void LightSampler::normalise(LightReceiver& r, float* importance, float* reachin
 }
 
 size_t LightSampler::sample(float u, float* probability, float* remapped) const {
+  if (pmf_.size() == 1 && pmf_[0] == 1.0f) {
+    // One light (or the world alone): what the search below gives, (u − 0) / 1 being u.
+    *probability = 1.0f;
+    if (remapped) *remapped = std::min(std::max(u, 0.0f), 0x1.fffffep-1f);
+    return 0;
+  }
   size_t i = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
   i = std::min(i, pmf_.size() - 1);
   *probability = pmf_[i];

@@ -180,6 +180,38 @@ float spot_attenuation(const Light& spot, const Vec3& dir_from_light) {
   return a;
 }
 
+LightSample sample_mesh_light(const Light& light, const Vec3& p, Point2 u) {
+  LightSample s;
+  if (light.triangles.empty() || !(light.total_area > 0.0f)) return s;
+  // Pick a triangle by area with u.x, then reuse the rest of u.x for the point.
+  const float target = u.x * light.total_area;
+  const size_t i = std::min<size_t>(
+      static_cast<size_t>(std::upper_bound(light.cdf.begin(), light.cdf.end(), target) -
+                          light.cdf.begin()),
+      light.triangles.size() - 1);
+  const EmissiveTriangle& tri = light.triangles[i];
+  const float lo = i == 0 ? 0.0f : light.cdf[i - 1];
+  float ux = tri.area > 0.0f ? (target - lo) / tri.area : 0.5f;
+  ux = clamp(ux, 0.0f, 0x1.fffffep-1f);
+  // Uniform point on the triangle (square-root parametrisation).
+  const float su = std::sqrt(ux);
+  const float b1 = 1.0f - su, b2 = u.y * su;
+  const Vec3 q = tri.p0 + tri.e1 * b1 + tri.e2 * b2;
+  const Vec3 d = q - p;
+  const float d2 = length_squared(d);
+  if (!(d2 > 0.0f)) return s;
+  s.distance = std::sqrt(d2);
+  s.wi = d / s.distance;
+  const float cos_light = std::fabs(dot(tri.normal, s.wi));
+  if (!(cos_light > 0.0f)) return s;
+  s.radiance = tri.radiance;
+  s.pdf = d2 / (cos_light * light.total_area);
+  s.triangle = static_cast<int32_t>(i);
+  s.b1 = b1;
+  s.b2 = b2;
+  return s;
+}
+
 LightSample sample_light(const Light& light, const Vec3& p, Point2 u) {
   LightSample s;
   switch (light.type) {
@@ -248,36 +280,8 @@ LightSample sample_light(const Light& light, const Vec3& p, Point2 u) {
       s.radiance = light.radiance;
       return s;
     }
-    case LightType::Mesh: {
-      if (light.triangles.empty() || !(light.total_area > 0.0f)) return s;
-      // Pick a triangle by area with u.x, then reuse the rest of u.x for the point.
-      const float target = u.x * light.total_area;
-      const size_t i = std::min<size_t>(
-          static_cast<size_t>(std::upper_bound(light.cdf.begin(), light.cdf.end(), target) -
-                              light.cdf.begin()),
-          light.triangles.size() - 1);
-      const EmissiveTriangle& tri = light.triangles[i];
-      const float lo = i == 0 ? 0.0f : light.cdf[i - 1];
-      float ux = tri.area > 0.0f ? (target - lo) / tri.area : 0.5f;
-      ux = clamp(ux, 0.0f, 0x1.fffffep-1f);
-      // Uniform point on the triangle (square-root parametrisation).
-      const float su = std::sqrt(ux);
-      const float b1 = 1.0f - su, b2 = u.y * su;
-      const Vec3 q = tri.p0 + tri.e1 * b1 + tri.e2 * b2;
-      const Vec3 d = q - p;
-      const float d2 = length_squared(d);
-      if (!(d2 > 0.0f)) return s;
-      s.distance = std::sqrt(d2);
-      s.wi = d / s.distance;
-      const float cos_light = std::fabs(dot(tri.normal, s.wi));
-      if (!(cos_light > 0.0f)) return s;
-      s.radiance = tri.radiance;
-      s.pdf = d2 / (cos_light * light.total_area);
-      s.triangle = static_cast<int32_t>(i);
-      s.b1 = b1;
-      s.b2 = b2;
-      return s;
-    }
+    case LightType::Mesh:
+      return sample_mesh_light(light, p, u);
   }
   return s;
 }
