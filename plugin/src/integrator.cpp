@@ -6,6 +6,7 @@
 #include <string>
 #include <type_traits>
 
+#include "bxdf/lone_diffuse.h"
 #include "bxdf/microfacet/multiscatter_ggx.h"
 #include "bxdf/models/cycles_transparent.h"
 #include "bxdf/params.h"
@@ -68,7 +69,8 @@ PathTracer::PathTracer(const Scene& scene, const IntegratorSettings& settings)
                          std::to_string(settings.transparent_max_bounces) + " must be in [0, inf)");
 }
 
-RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf,
+template <class Scattering>
+RGB PathTracer::sample_one_light(const Hit& hit, const SurfacePoint& sp, const Scattering& bsdf,
                                  const Vec3& wo, LightReceiver& receiver,
                                  const PathSampler& path_sampler, int vertex,
                                  int transparent_bounces, PathStats& stats,
@@ -409,6 +411,9 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
   // furnace the samples lost below the triangle's plane were all of the noise. (An opaque
   // surface's sp.ng already faces the viewer: face_viewer.)
   if (!transmissive) bsdf.set_sampling_horizon(sp.ng);
+  // Most vertices shade one diffuse closure: LoneDiffuse gives the same values for less work.
+  LoneDiffuse lone;
+  bool is_lone = false;
   RGB emitted = mat.emission;
   const bool scatters = prepared->scatters, may_pass = prepared->may_pass;
   if (mat.graph) {
@@ -454,6 +459,10 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
       arena.reset();
       mat.graph->add_closures(registers, sp.tangent, arena, bsdf);
     }
+  } else if (mat.components.size() == 1 && scatters &&
+             LoneDiffuse::of(*mat.components[0], RGB(1.0f), bsdf.frame(), bsdf.geometric_normal(),
+                             transmissive ? nullptr : &sp.ng, &lone)) {
+    is_lone = true;  // the BSDF it would be, without building it
   } else {
     for (const BxDFPtr& c : mat.components) bsdf.add(c.get());
   }
@@ -466,23 +475,29 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
     ray.tmin = TransparentShadows::past_hit(ray, hit.t);
     return next_vertex();
   }
-  if (bsdf.num_components() == 0) return end_path();
-  // Cycles picks the first surface's closures defensively (closure_pick.h), for its light
-  // sample's MIS weight as for its BSDF sample.
-  if (bounce == 0 && transparent_bounces == 0) bsdf.use_defensive_sampling();
-
-  if (bsdf.has_non_delta()) {
-    const RGB nee = sample_one_light(hit, sp, bsdf, wo, receiver, sampler, vertex,
-                                     transparent_bounces, stats, &s.shadow);
+  if (!is_lone) {
+    if (bsdf.num_components() == 0) return end_path();
+    // Cycles picks the first surface's closures defensively (closure_pick.h), for its light
+    // sample's MIS weight as for its BSDF sample.
+    if (bounce == 0 && transparent_bounces == 0) bsdf.use_defensive_sampling();
+    is_lone = LoneDiffuse::of(bsdf, &lone);
+  }
+  if (is_lone || bsdf.has_non_delta()) {
+    const RGB nee = is_lone ? sample_one_light(hit, sp, lone, wo, receiver, sampler, vertex,
+                                               transparent_bounces, stats, &s.shadow)
+                            : sample_one_light(hit, sp, bsdf, wo, receiver, sampler, vertex,
+                                               transparent_bounces, stats, &s.shadow);
     if (s.shadow.active) s.shadow.contribution = beta * nee;  // added once the ray is tested
     else L += beta * nee;
   }
 
-  const BSDFSample bs = bsdf.sample_f(wo, sampler.bsdf(vertex));
+  const Point2 u_bsdf = sampler.bsdf(vertex);
+  const BSDFSample bs = is_lone ? lone.sample_f(wo, u_bsdf) : bsdf.sample_f(wo, u_bsdf);
   if (!bs.valid() || bs.f.is_black()) return end_path();
   beta *= bs.f_cos / bs.pdf;
-  // (Only a material with a Transparent BSDF can pass: may_pass spares the others the cast.)
-  if (may_pass && bs.component >= 0 &&
+  // (Only a material with a Transparent BSDF can pass, never a LoneDiffuse: may_pass spares
+  // the others the cast.)
+  if (may_pass && !is_lone && bs.component >= 0 &&
       TransparentShadows::is_transparent(bsdf.component(bs.component))) {
     // A pass through: the same ray goes on behind the surface (Cycles moves only tmin).
     if (beta.is_black()) return end_path();

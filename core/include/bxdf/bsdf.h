@@ -78,6 +78,17 @@ class BSDF {
 
   const Frame& frame() const { return frame_; }
   const Vec3& geometric_normal() const { return ng_; }
+  // set_sampling_horizon's normal, where it clips the cosine lobes (else false).
+  bool sampling_horizon(Vec3* normal) const {
+    *normal = horizon_;
+    return has_horizon_;
+  }
+  // True when component i is in the BSDF's own shading frame (its normal not perturbed).
+  bool in_shading_frame(int i) const {
+    const Frame& f = frames_[i];
+    return f.n == frame_.n && f.s == frame_.s && f.t == frame_.t;
+  }
+  float sample_weight(int i) const { return sample_weights_[i]; }
   Vec3 to_local(const Vec3& v) const { return frame_.to_local(v); }
   Vec3 to_world(const Vec3& v) const { return frame_.to_world(v); }
 

@@ -100,6 +100,10 @@ class BxDF {
   // True for a model that samples the cosine lobe on wo's side (cosine_reflection.h): a BSDF
   // with a sampling horizon then draws it above the triangle's plane (cosine_above_plane.h).
   virtual bool samples_cosine_lobe() const { return false; }
+  // True for a model whose f is one constant, *f, on wo's side of the surface and 0 on the
+  // other, sampled by that cosine lobe (a Lambertian; Cycles' Diffuse BSDF at roughness 0):
+  // a BSDF of it alone is then a LoneDiffuse (lone_diffuse.h).
+  virtual bool constant_cosine_lobe(RGB* /*f*/) const { return false; }
 
   // The part of f(wo, wi) that Cycles builds as diffuse closures (CLOSURE_IS_BSDF_DIFFUSE)
   // inside a model that also has other lobes: the Principled BSDF's diffuse and sheen. Cycles

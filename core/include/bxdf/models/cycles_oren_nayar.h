@@ -34,6 +34,11 @@ class CyclesOrenNayar final : public BxDFImpl<CyclesOrenNayar> {
   }
   float density(const Vec3& wo, const Vec3& wi) const { return cosine_reflection_pdf(wo, wi); }
   bool samples_cosine_lobe() const override { return true; }
+  // At roughness 0 eval is color · A wherever it is not 0.
+  bool constant_cosine_lobe(RGB* f) const override {
+    *f = color_ * a_;
+    return b_ == 0.0f;
+  }
 
   float a() const { return a_; }
   float b() const { return b_; }

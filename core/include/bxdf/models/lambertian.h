@@ -19,6 +19,10 @@ class Lambertian final : public BxDFImpl<Lambertian> {
   }
   float density(const Vec3& wo, const Vec3& wi) const { return cosine_reflection_pdf(wo, wi); }
   bool samples_cosine_lobe() const override { return true; }
+  bool constant_cosine_lobe(RGB* f) const override {
+    *f = r_over_pi_;
+    return true;
+  }
 
   RGB rho_hd(const Vec3&, int, uint64_t) const override { return r_; }
   RGB rho_hh(int, uint64_t) const override { return r_; }

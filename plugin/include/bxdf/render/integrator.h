@@ -179,10 +179,12 @@ class PathTracer {
   // in *deferred (active), and the radiance returned is what an unblocked ray gives. The
   // light's numbers are `path_sampler`'s of `vertex` (PathSampler::light), drawn only where the
   // scene has a light to pick: x picks the light and, remapped within its interval, is the
-  // light point's first coordinate.
-  RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const BSDF& bsdf, const Vec3& wo,
-                       LightReceiver& receiver, const PathSampler& path_sampler, int vertex,
-                       int transparent_bounces, PathStats& stats,
+  // light point's first coordinate. `bsdf`: the vertex's BSDF, or its LoneDiffuse where it
+  // is one (what is asked of it: f_cos, f_cos_pdf).
+  template <class Scattering>
+  RGB sample_one_light(const Hit& hit, const SurfacePoint& sp, const Scattering& bsdf,
+                       const Vec3& wo, LightReceiver& receiver, const PathSampler& path_sampler,
+                       int vertex, int transparent_bounces, PathStats& stats,
                        PendingShadow* deferred = nullptr) const;
   // A direction towards the world (light sampler entry lights().size()), drawn from (u1, u2).
   LightSample world_light_sample(float u1, float u2) const;
