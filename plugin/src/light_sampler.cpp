@@ -10,6 +10,9 @@ namespace bxdf::render {
 
 namespace {
 
+// A picked entry's share of u stretched back to [0, 1): what its light samples with.
+float into_unit_interval(float v) { return std::min(std::max(v, 0.0f), 0x1.fffffep-1f); }
+
 // A local light's bounding sphere (centre, radius), its emitting normal and whether it emits
 // to that side only.
 struct Bounds {
@@ -171,7 +174,7 @@ size_t LightSampler::sample(float u, float* probability, float* remapped) const 
   if (pmf_.size() == 1 && pmf_[0] == 1.0f) {
     // One light (or the world alone): what the search below gives, (u − 0) / 1 being u.
     *probability = 1.0f;
-    if (remapped) *remapped = std::min(std::max(u, 0.0f), 0x1.fffffep-1f);
+    if (remapped) *remapped = into_unit_interval(u);
     return 0;
   }
   size_t i = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
@@ -180,7 +183,7 @@ size_t LightSampler::sample(float u, float* probability, float* remapped) const 
   if (remapped) {
     // A picked light has pmf > 0 (upper_bound passes over empty intervals).
     const float lo = i == 0 ? 0.0f : cdf_[i - 1];
-    *remapped = std::min(std::max((u - lo) / pmf_[i], 0.0f), 0x1.fffffep-1f);
+    *remapped = into_unit_interval((u - lo) / pmf_[i]);
   }
   return i;
 }
@@ -211,7 +214,7 @@ size_t LightSampler::sample(LightReceiver& r, float u, float* probability,
     return picked;
   }
   *probability = p;
-  if (remapped) *remapped = std::min(std::max((u - lo) / p, 0.0f), 0x1.fffffep-1f);
+  if (remapped) *remapped = into_unit_interval((u - lo) / p);
   return picked;
 }
 
