@@ -58,6 +58,10 @@ class Reader {
     if (!j.is_object()) fail(path, "an object", j);
   }
 
+  bool boolean(const json& j, const std::string& path) const {
+    if (!j.is_boolean()) fail(path, "true or false", j);
+    return j.get<bool>();
+  }
   double number(const json& j, const std::string& path) const {
     if (!j.is_number()) fail(path, "a number", j);
     const double v = j.get<double>();
@@ -170,16 +174,10 @@ void read_render_settings(const Reader& r, const json& j, RenderSettings& s) {
                                              "render.transparent_max_bounces", 0, 1024, "[0, 1024]");
   if (j.contains("tile_size"))
     s.tile_size = r.integer_in(j["tile_size"], "render.tile_size", 1, 4096, "[1, 4096]");
-  if (j.contains("transparent_background")) {
-    if (!j["transparent_background"].is_boolean())
-      r.fail("render.transparent_background", "true or false", j["transparent_background"]);
-    s.transparent_background = j["transparent_background"].get<bool>();
-  }
-  if (j.contains("adaptive_sampling")) {
-    if (!j["adaptive_sampling"].is_boolean())
-      r.fail("render.adaptive_sampling", "true or false", j["adaptive_sampling"]);
-    s.adaptive_sampling = j["adaptive_sampling"].get<bool>();
-  }
+  if (j.contains("transparent_background"))
+    s.transparent_background = r.boolean(j["transparent_background"], "render.transparent_background");
+  if (j.contains("adaptive_sampling"))
+    s.adaptive_sampling = r.boolean(j["adaptive_sampling"], "render.adaptive_sampling");
   if (j.contains("adaptive_threshold"))
     s.adaptive_threshold = static_cast<float>(r.number_in(
         j["adaptive_threshold"], "render.adaptive_threshold", 0.0, 1.0, "[0, 1] (0 = automatic)"));
