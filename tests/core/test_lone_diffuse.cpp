@@ -74,7 +74,15 @@ void expect_agreement(const BxDF& model, const RGB& weight, bool defensive, cons
     // direction a transmission; LoneDiffuse returns none: the path ends either way.
     const bool a_counts = a.valid() && !a.f.is_black();
     ASSERT_EQ(b.valid(), a_counts) << "wo " << wo.x << " " << wo.y << " " << wo.z;
+    // The path tracer's form of the same sample: its direction and pdf, and f·cos/pdf.
+    Vec3 wi_c;
+    float pdf_c = 0.0f;
+    RGB weight_c;
+    ASSERT_EQ(lone.sample(wo, u, &wi_c, &pdf_c, &weight_c), b.valid());
     if (!b.valid()) continue;
+    EXPECT_EQ(wi_c, b.wi);
+    EXPECT_EQ(pdf_c, b.pdf);
+    expect_close(weight_c, b.f_cos / b.pdf, "sample()'s weight");
     ++sampled;
     // The BSDF stretches u.x back from its component's slot ((u.x w)/w), which can move it
     // by an ulp: the directions agree to rounding.

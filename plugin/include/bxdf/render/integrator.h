@@ -200,6 +200,13 @@ class PathTracer {
   const Scene& scene_;
   IntegratorSettings settings_;
   TransparentShadows transparent_shadows_;  // shadow rays through Transparent BSDFs
+  // Per material: where a plain material (no graph) is one LoneDiffuse closure, its f. Worked
+  // out once, so that step() builds the closure without asking the model at every vertex.
+  struct PlainDiffuse {
+    bool lone = false;
+    RGB f;
+  };
+  std::vector<PlainDiffuse> plain_diffuse_;
 };
 
 }  // namespace bxdf::render
