@@ -180,15 +180,28 @@ float spot_attenuation(const Light& spot, const Vec3& dir_from_light) {
   return a;
 }
 
+namespace {
+
+// The index of the first entry of the ascending `cdf` above x (std::upper_bound's). A light of a
+// few triangles (a quad's two) is counted without branches: which one a sample falls in is a
+// coin toss, which a binary search's branches mispredict half the time.
+size_t first_above(const std::vector<float>& cdf, float x) {
+  constexpr size_t kCounted = 8;
+  if (cdf.size() > kCounted)
+    return static_cast<size_t>(std::upper_bound(cdf.begin(), cdf.end(), x) - cdf.begin());
+  size_t at_or_below = 0;
+  for (float c : cdf) at_or_below += c <= x;
+  return at_or_below;
+}
+
+}  // namespace
+
 LightSample sample_mesh_light(const Light& light, const Vec3& p, Point2 u) {
   LightSample s;
   if (light.triangles.empty() || !(light.total_area > 0.0f)) return s;
   // Pick a triangle by area with u.x, then reuse the rest of u.x for the point.
   const float target = u.x * light.total_area;
-  const size_t i = std::min<size_t>(
-      static_cast<size_t>(std::upper_bound(light.cdf.begin(), light.cdf.end(), target) -
-                          light.cdf.begin()),
-      light.triangles.size() - 1);
+  const size_t i = std::min(first_above(light.cdf, target), light.triangles.size() - 1);
   const EmissiveTriangle& tri = light.triangles[i];
   const float lo = i == 0 ? 0.0f : light.cdf[i - 1];
   float ux = tri.area > 0.0f ? (target - lo) / tri.area : 0.5f;

@@ -317,6 +317,9 @@ uint32_t Scene::store_mesh(const MeshView& m, bool instanced, Mesh* owned) {
                          " must be in [0, 1)");
   s.visibility = m.visibility;
   s.terminator = m.terminator;
+  // A flat-shaded mesh has no smooth surface to lift a shadow ray onto (smooth_triangle refuses
+  // it): without the offset, the light sample skips the test that would find that out.
+  if (s.normals.empty()) s.terminator.geometry = 0.0f;
   if (m.material_indices) {
     take_or_copy(owned ? &owned->material_indices : nullptr, m.material_indices, m.num_triangles,
                  &s.material_indices);

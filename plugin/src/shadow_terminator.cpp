@@ -54,12 +54,4 @@ Vec3 terminator_shadow_origin(const SmoothTriangle& tri, float b1, float b2, con
   return p + offset;
 }
 
-float shading_offset_factor(float cos_in, float shading_offset) {
-  if (!(shading_offset > 0.0f)) return 1.0f;
-  if (!(cos_in > 0.0f)) return 0.0f;  // Cycles: max(cos(angle·m), 0) = 0 past the horizon
-  const float frequency = 1.0f / (1.0f - 0.5f * shading_offset);
-  const float angle = std::acos(std::min(cos_in, 1.0f));
-  return std::max(std::cos(angle * frequency), 0.0f) / cos_in;
-}
-
 }  // namespace bxdf::render

@@ -191,6 +191,7 @@ class Scene {
   }
   // The hit triangle's vertices and vertex normals; false when the mesh is flat-shaded.
   bool smooth_triangle(const Hit& hit, SmoothTriangle* tri) const;
+  // The mesh's terminator offsets as they apply: a flat-shaded mesh's geometry offset is 0.
   const TerminatorOffsets& terminator(uint32_t mesh) const { return meshes_[mesh].terminator; }
 
   // The Embree scene handle (RTCScene), for benchmarks that cast rays directly.

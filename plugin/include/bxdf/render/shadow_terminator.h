@@ -7,6 +7,7 @@
 //   direction is rescaled so that the light falls off before the terminator.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "bxdf/math.h"
@@ -44,7 +45,14 @@ Vec3 terminator_shadow_origin(const SmoothTriangle& tri, float b1, float b2, con
 // viewer (Cycles flips it on back faces, transmissive or not); at or below that horizon the
 // factor is 0, as Cycles' shift_cos_in gives there. Cycles applies it on the reflection side
 // only: to a light direction with cos_in >= 0 (bsdf_eval) and to a sampled direction whose lobe
-// is not a transmission (bsdf_sample, whatever side the direction falls on).
-float shading_offset_factor(float cos_in, float shading_offset);
+// is not a transmission (bsdf_sample, whatever side the direction falls on). Inline: most
+// meshes have no shading offset, and the test runs twice at every path vertex.
+inline float shading_offset_factor(float cos_in, float shading_offset) {
+  if (!(shading_offset > 0.0f)) return 1.0f;
+  if (!(cos_in > 0.0f)) return 0.0f;  // Cycles: max(cos(angle·m), 0) = 0 past the horizon
+  const float frequency = 1.0f / (1.0f - 0.5f * shading_offset);
+  const float angle = std::acos(std::min(cos_in, 1.0f));
+  return std::max(std::cos(angle * frequency), 0.0f) / cos_in;
+}
 
 }  // namespace bxdf::render
