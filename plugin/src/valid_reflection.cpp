@@ -5,12 +5,7 @@
 
 namespace bxdf::render {
 
-Vec3 ensure_valid_reflection(const Vec3& ng, const Vec3& wo, const Vec3& n) {
-  const Vec3 mirrored = n * (2.0f * dot(n, wo)) - wo;
-  // The reflection may always be as shallow as the view itself.
-  const float threshold = std::min(0.9f * dot(ng, wo), 0.01f);
-  if (dot(ng, mirrored) >= threshold) return n;
-
+Vec3 bend_to_valid_reflection(const Vec3& ng, const Vec3& wo, const Vec3& n, float threshold) {
   // In the frame z = ng, x = n's part across ng, solve 2 (n'·wo) n'_z − wo_z = threshold for a
   // unit n' = (√(1 − n'_z²), 0, n'_z): n'_z² = (c ± b) / (2a).
   const Vec3 across = n - ng * dot(n, ng);
