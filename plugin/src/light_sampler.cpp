@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "bxdf/render/cdf_search.h"
+
 namespace bxdf::render {
 
 namespace {
@@ -177,11 +179,10 @@ size_t LightSampler::sample(float u, float* probability, float* remapped) const 
     if (remapped) *remapped = into_unit_interval(u);
     return 0;
   }
-  size_t i = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
-  i = std::min(i, pmf_.size() - 1);
+  const size_t i = std::min(first_above(cdf_, u), pmf_.size() - 1);
   *probability = pmf_[i];
   if (remapped) {
-    // A picked light has pmf > 0 (upper_bound passes over empty intervals).
+    // A picked light has pmf > 0 (first_above passes over empty intervals).
     const float lo = i == 0 ? 0.0f : cdf_[i - 1];
     *remapped = into_unit_interval((u - lo) / pmf_[i]);
   }

@@ -6,6 +6,7 @@
 
 #include "bxdf/frame.h"
 #include "bxdf/params.h"
+#include "bxdf/render/cdf_search.h"
 #include "bxdf/sampling.h"
 
 namespace bxdf::render {
@@ -179,22 +180,6 @@ float spot_attenuation(const Light& spot, const Vec3& dir_from_light) {
   if (spot.spot_smooth > 0.0f && t < spot.spot_smooth) a *= smoothstep(0.0f, spot.spot_smooth, t);
   return a;
 }
-
-namespace {
-
-// The index of the first entry of the ascending `cdf` above x (std::upper_bound's). A light of a
-// few triangles (a quad's two) is counted without branches: which one a sample falls in is a
-// coin toss, which a binary search's branches mispredict half the time.
-size_t first_above(const std::vector<float>& cdf, float x) {
-  constexpr size_t kCounted = 8;
-  if (cdf.size() > kCounted)
-    return static_cast<size_t>(std::upper_bound(cdf.begin(), cdf.end(), x) - cdf.begin());
-  size_t at_or_below = 0;
-  for (float c : cdf) at_or_below += c <= x;
-  return at_or_below;
-}
-
-}  // namespace
 
 LightSample sample_mesh_light(const Light& light, const Vec3& p, Point2 u) {
   LightSample s;
