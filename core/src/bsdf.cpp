@@ -18,8 +18,9 @@ bool agrees_with_geometry(uint32_t flags, bool reflect) {
 // model's own at that direction.
 BxDFSample sample_clipped_lobe(const BxDF& b, const Vec3& wo, const Vec3& g, Point2 u) {
   BxDFSample s;
-  s.wi = sample_cosine_above_plane(u, g);
-  s.pdf = cosine_above_plane_pdf(s.wi, g);
+  const CosineAbovePlane lobe(g);
+  s.wi = lobe.sample(u);
+  s.pdf = lobe.pdf(s.wi);
   s.f = b.f(wo, s.wi);
   s.flags = kReflection | kDiffuse;
   return s;

@@ -24,27 +24,45 @@ inline Point2 horizon_tilt_axis(const Vec3& g) {
   return {g.x / len, g.y / len};
 }
 
-// A direction on the cosine lobe about +z above the plane of unit `g` (g.z > 0).
-inline Vec3 sample_cosine_above_plane(Point2 u, const Vec3& g) {
-  Point2 d = sample_concentric_disk(u);
-  const Point2 axis = horizon_tilt_axis(g);
-  const float t = d.x * axis.x + d.y * axis.y;
-  if (t < 0.0f) {
-    const float squeeze = (g.z - 1.0f) * t;  // moves the point to t·g.z along the axis
-    d.x += squeeze * axis.x;
-    d.y += squeeze * axis.y;
-  }
-  const float z = safe_sqrt(1.0f - d.x * d.x - d.y * d.y);
-  return {d.x, d.y, z};
-}
+// The cosine lobe about +z above the plane of unit `g` (g.z > 0), g's tilt axis worked out
+// once: a caller that samples the lobe and evaluates its density (BSDF, LoneDiffuse) pays for
+// the axis's square root and divisions once, not at every call.
+class CosineAbovePlane {
+ public:
+  CosineAbovePlane() = default;  // the plane of +z: nothing clipped
+  explicit CosineAbovePlane(const Vec3& g) : g_(g), axis_(horizon_tilt_axis(g)) {}
 
-// The density of sample_cosine_above_plane per unit solid angle: 0 below either plane.
+  // A direction on the lobe.
+  Vec3 sample(Point2 u) const {
+    Point2 d = sample_concentric_disk(u);
+    const float t = d.x * axis_.x + d.y * axis_.y;
+    if (t < 0.0f) {
+      const float squeeze = (g_.z - 1.0f) * t;  // moves the point to t·g.z along the axis
+      d.x += squeeze * axis_.x;
+      d.y += squeeze * axis_.y;
+    }
+    const float z = safe_sqrt(1.0f - d.x * d.x - d.y * d.y);
+    return {d.x, d.y, z};
+  }
+  // The density of sample() per unit solid angle: 0 below either plane.
+  float pdf(const Vec3& wi) const {
+    if (!(wi.z > 0.0f) || !(dot(wi, g_) > 0.0f)) return 0.0f;
+    const bool squeezed = wi.x * axis_.x + wi.y * axis_.y < 0.0f;
+    const float p = cosine_hemisphere_pdf(wi.z);
+    return squeezed ? p / g_.z : p;
+  }
+
+ private:
+  Vec3 g_{0.0f, 0.0f, 1.0f};
+  Point2 axis_{0.0f, 0.0f};
+};
+
+// One sample and one density of the lobe above g's plane.
+inline Vec3 sample_cosine_above_plane(Point2 u, const Vec3& g) {
+  return CosineAbovePlane(g).sample(u);
+}
 inline float cosine_above_plane_pdf(const Vec3& wi, const Vec3& g) {
-  if (!(wi.z > 0.0f) || !(dot(wi, g) > 0.0f)) return 0.0f;
-  const Point2 axis = horizon_tilt_axis(g);
-  const bool squeezed = wi.x * axis.x + wi.y * axis.y < 0.0f;
-  const float p = cosine_hemisphere_pdf(wi.z);
-  return squeezed ? p / g.z : p;
+  return CosineAbovePlane(g).pdf(wi);
 }
 
 }  // namespace bxdf

@@ -60,7 +60,7 @@ class LoneDiffuse {
   Vec3 ng_;
   RGB f_;  // the closure's weight × albedo / π
   bool has_horizon_ = false;
-  Vec3 horizon_local_;  // the triangle's normal in frame_, where has_horizon_
+  CosineAbovePlane horizon_;  // the lobe above the triangle's plane (its normal in frame_)
 };
 
 // Inline: the path tracer makes one and calls them at most path vertices.
@@ -70,8 +70,9 @@ inline LoneDiffuse::LoneDiffuse(const RGB& f, const Frame& frame, const Vec3& ng
   // BSDF::set_sampling_horizon and clipped_lobe: a plane within float noise of the frame's
   // clips nothing, nor one the frame's normal is not above.
   if (horizon && dot(*horizon, frame.n) < 1.0f - 1e-7f) {
-    horizon_local_ = frame.to_local(*horizon);
-    has_horizon_ = horizon_local_.z > 0.0f;
+    const Vec3 g = frame.to_local(*horizon);
+    has_horizon_ = g.z > 0.0f;
+    if (has_horizon_) horizon_ = CosineAbovePlane(g);
   }
 }
 
@@ -82,7 +83,7 @@ inline RGB LoneDiffuse::f_cos_pdf(const Vec3& wo, const Vec3& wi, float* pdf) co
   if (cos_o == 0.0f) return RGB(0.0f);
   const float cos_i = dot(wi, frame_.n);
   const bool same_side = cos_o * cos_i > 0.0f;
-  if (clipped(cos_o)) *pdf = cosine_above_plane_pdf(frame_.to_local(wi), horizon_local_);
+  if (clipped(cos_o)) *pdf = horizon_.pdf(frame_.to_local(wi));
   else if (same_side) *pdf = cosine_hemisphere_pdf(std::fabs(cos_i));
   // The geometric normal decides between reflection and transmission (BSDF::f).
   const bool reflects = dot(wi, ng_) * dot(wo, ng_) > 0.0f;
@@ -95,8 +96,8 @@ inline bool LoneDiffuse::draw(const Vec3& wo, Point2 u, Vec3* wi_local, Vec3* wi
   if (cos_o == 0.0f) return false;
   Vec3 local;
   if (clipped(cos_o)) {
-    local = sample_cosine_above_plane(u, horizon_local_);
-    *pdf = cosine_above_plane_pdf(local, horizon_local_);
+    local = horizon_.sample(u);
+    *pdf = horizon_.pdf(local);
   } else {
     local = sample_cosine_hemisphere(u);  // sample_cosine_reflection: on wo's side
     if (cos_o < 0.0f) local.z = -local.z;
