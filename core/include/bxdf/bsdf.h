@@ -88,7 +88,6 @@ class BSDF {
     const Frame& f = frames_[i];
     return f.n == frame_.n && f.s == frame_.s && f.t == frame_.t;
   }
-  float sample_weight(int i) const { return sample_weights_[i]; }
   Vec3 to_local(const Vec3& v) const { return frame_.to_local(v); }
   Vec3 to_world(const Vec3& v) const { return frame_.to_world(v); }
 
