@@ -12,9 +12,6 @@ namespace bxdf::render {
 
 namespace {
 
-// A picked entry's share of u stretched back to [0, 1): what its light samples with.
-float into_unit_interval(float v) { return std::min(std::max(v, 0.0f), 0x1.fffffep-1f); }
-
 // A local light's bounding sphere (centre, radius), its emitting normal and whether it emits
 // to that side only.
 struct Bounds {

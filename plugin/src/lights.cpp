@@ -189,8 +189,7 @@ LightSample sample_mesh_light(const Light& light, const Vec3& p, Point2 u) {
   const size_t i = std::min(first_above(light.cdf, target), light.triangles.size() - 1);
   const EmissiveTriangle& tri = light.triangles[i];
   const float lo = i == 0 ? 0.0f : light.cdf[i - 1];
-  float ux = tri.area > 0.0f ? (target - lo) / tri.area : 0.5f;
-  ux = clamp(ux, 0.0f, 0x1.fffffep-1f);
+  const float ux = into_unit_interval(tri.area > 0.0f ? (target - lo) / tri.area : 0.5f);
   // Uniform point on the triangle (square-root parametrisation).
   const float su = std::sqrt(ux);
   const float b1 = 1.0f - su, b2 = u.y * su;

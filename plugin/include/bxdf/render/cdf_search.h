@@ -1,5 +1,5 @@
-// Finding the interval of a piecewise-constant distribution that a number falls in, for the
-// light picker and a mesh light's triangles.
+// Finding the interval of a piecewise-constant distribution that a number falls in, and the
+// number's place within it, for the light picker and a mesh light's triangles.
 #pragma once
 
 #include <algorithm>
@@ -20,5 +20,9 @@ inline size_t first_above(const std::vector<float>& cdf, float x) {
   for (float c : cdf) at_or_below += c <= x;
   return at_or_below;
 }
+
+// A number's place within the interval it fell in, (x − lo) / width, clamped back to [0, 1):
+// the picked light, or triangle, samples with it.
+inline float into_unit_interval(float v) { return std::min(std::max(v, 0.0f), 0x1.fffffep-1f); }
 
 }  // namespace bxdf::render
