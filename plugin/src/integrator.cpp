@@ -264,7 +264,12 @@ void PathTracer::prepare(const PathState& s, const PathSampler& sampler, const H
     }
   }
   SurfacePoint& sp = prepared->sp;
-  scene_.surface_point(hit, &sp);  // in place: a returned copy was read back before it landed
+  // A lone diffuse lobe is the same about any tangent: its frame is made from the normal alone,
+  // as Cycles' diffuse closures make theirs (make_orthonormals), and the hit's tangent (the
+  // radial one reads the object's texture space and transform) is not worked out.
+  const bool lone = plain_diffuse_[material].lone;
+  // In place: a returned copy was read back before it landed.
+  scene_.surface_point(hit, &sp, !lone);
   const Vec3 wo = -s.ray.dir;
   const bool flipped = face_viewer(sp, wo, scene_.transmissive(sp.material));
   // Reflection is judged against the shading normal, as Cycles' closures do: directions
@@ -273,7 +278,9 @@ void PathTracer::prepare(const PathState& s, const PathSampler& sampler, const H
   // normal is Cycles' valid-reflection one, in sp.ns's orientation.
   const float viewer_side = dot(wo, sp.ng) < 0.0f ? -1.0f : 1.0f;
   prepared->viewer_n = viewer_side_normal(sp, wo);
-  prepared->frame = Frame::from_normal_tangent(prepared->viewer_n * viewer_side, sp.tangent);
+  const Vec3 frame_n = prepared->viewer_n * viewer_side;
+  prepared->frame =
+      lone ? Frame::from_normal(frame_n) : Frame::from_normal_tangent(frame_n, sp.tangent);
   // A graph of constants only (no nodes; Cycles' default tangent is a node's) has nothing to
   // run: its closures and emission read no register.
   if (!graph || (graph->nodes.empty() && graph->default_tangent_reg < 0)) return;

@@ -709,7 +709,7 @@ SurfacePoint Scene::surface_point(const Hit& hit) const {
   return sp;
 }
 
-void Scene::surface_point(const Hit& hit, SurfacePoint* out) const {
+void Scene::surface_point(const Hit& hit, SurfacePoint* out, bool with_tangent) const {
   // Computed in the mesh's space (world, or an instanced mesh's object space), then moved to
   // world space by the hit's placement: points and dp/du as points and vectors, normals by the
   // inverse transpose (which keeps an instance's outside out even when it mirrors).
@@ -759,7 +759,7 @@ void Scene::surface_point(const Hit& hit, SurfacePoint* out) const {
     sp.uv = Point2(u0 * b0 + uv[2 * i1] * hit.b1 + uv[2 * i2] * hit.b2,
                    v0 * b0 + uv[2 * i1 + 1] * hit.b1 + uv[2 * i2 + 1] * hit.b2);
     const float det = du1 * dv2 - dv1 * du2;
-    if (std::fabs(det) > 1e-20f) {
+    if (with_tangent && std::fabs(det) > 1e-20f) {
       tangent = (e1 * dv2 - e2 * dv1) / det;  // dp/du
       if (placed) tangent = placed->vector_to_world(tangent);
       have_tangent = normalize_direction(tangent);
@@ -767,7 +767,7 @@ void Scene::surface_point(const Hit& hit, SurfacePoint* out) const {
   } else {
     sp.uv = Point2(hit.b1, hit.b2);
   }
-  sp.tangent = have_tangent ? tangent : radial_tangent(hit, p);
+  sp.tangent = have_tangent ? tangent : with_tangent ? radial_tangent(hit, p) : Vec3(0, 0, 0);
   sp.material = material_of(hit);
 }
 

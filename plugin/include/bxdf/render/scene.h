@@ -153,7 +153,10 @@ class Scene {
                        uint8_t* occluded) const;
   SurfacePoint surface_point(const Hit& hit) const;
   // The same, written into *out (a path vertex's point, filled where it is kept).
-  void surface_point(const Hit& hit, SurfacePoint* out) const;
+  void surface_point(const Hit& hit, SurfacePoint* out) const { surface_point(hit, out, true); }
+  // The same without the tangent where with_tangent is false (out->tangent is then zero): for a
+  // caller whose closures read none.
+  void surface_point(const Hit& hit, SurfacePoint* out, bool with_tangent) const;
 
   // Mesh attributes at a hit, for material graphs (hit barycentrics may lie outside the
   // triangle: attributes extrapolate linearly, as ray differentials need).
