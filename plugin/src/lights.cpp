@@ -189,7 +189,7 @@ LightSample sample_mesh_light(const Light& light, const Vec3& p, Point2 u) {
   const size_t i = std::min(first_above(light.cdf, target), light.triangles.size() - 1);
   const EmissiveTriangle& tri = light.triangles[i];
   const float lo = i == 0 ? 0.0f : light.cdf[i - 1];
-  const float ux = into_unit_interval(tri.area > 0.0f ? (target - lo) / tri.area : 0.5f);
+  const float ux = into_unit_interval((target - lo) * tri.inv_area);
   // Uniform point on the triangle (square-root parametrisation).
   const float su = std::sqrt(ux);
   const float b1 = 1.0f - su, b2 = u.y * su;
@@ -199,10 +199,12 @@ LightSample sample_mesh_light(const Light& light, const Vec3& p, Point2 u) {
   if (!(d2 > 0.0f)) return s;
   s.distance = std::sqrt(d2);
   s.wi = d / s.distance;
-  const float cos_light = std::fabs(dot(tri.normal, s.wi));
-  if (!(cos_light > 0.0f)) return s;
+  // The light's cosine times the distance, from d itself: the pdf's division then runs beside
+  // the direction's instead of after it.
+  const float cos_light_distance = std::fabs(dot(tri.normal, d));
+  if (!(cos_light_distance > 0.0f)) return s;
   s.radiance = tri.radiance;
-  s.pdf = d2 / (cos_light * light.total_area);
+  s.pdf = d2 * s.distance / (cos_light_distance * light.total_area);
   s.triangle = static_cast<int32_t>(i);
   s.b1 = b1;
   s.b2 = b2;

@@ -444,7 +444,9 @@ void Scene::add_mesh_light(uint32_t mesh, uint32_t instance, int* light_index) {
     tri.e2 = p[2] - tri.p0;
     Vec3 n = cross(tri.e1, tri.e2);
     tri.area = 0.5f * length(n);
-    if (!normalize_direction(n) || !(tri.area > 0.0f)) continue;  // degenerate: cannot emit
+    tri.inv_area = 1.0f / tri.area;
+    // Degenerate, or so small that 1 / area overflows: cannot emit.
+    if (!normalize_direction(n) || !(tri.area > 0.0f) || !std::isfinite(tri.inv_area)) continue;
     tri.normal = n;
     tri.radiance = le;
     tri.triangle = static_cast<uint32_t>(t);

@@ -35,6 +35,7 @@ struct EmissiveTriangle {
   Vec3 normal;      // unit, cross(e1, e2) direction
   RGB radiance;     // constant emission; textured: the power estimate only
   float area = 0.0f;
+  float inv_area = 0.0f;  // 1 / area (> 0: a degenerate triangle is not kept)
   uint32_t triangle = 0;  // its index in the mesh
   bool textured = false;  // the emission is evaluated where a sample lands
 };
