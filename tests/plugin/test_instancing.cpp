@@ -159,6 +159,13 @@ TEST(Instancing, HitsShadeAsTheFlattenedGeometry) {
         // A ray grazing a shared edge may take either triangle: compare the points only there.
         ASSERT_NEAR(a.t, b.t, 1e-4f * b.t);
         const SurfacePoint pa = inst.surface_point(a), pb = flat.surface_point(b);
+        // Without its tangent (a lone diffuse hit's), the same point to the bit, tangent zero.
+        SurfacePoint bare;
+        inst.surface_point(a, &bare, false);
+        EXPECT_TRUE(bare.p == pa.p && bare.ng == pa.ng && bare.ns == pa.ns &&
+                    bare.smooth_normal == pa.smooth_normal && bare.uv.x == pa.uv.x &&
+                    bare.uv.y == pa.uv.y && bare.material == pa.material);
+        EXPECT_EQ(bare.tangent, Vec3(0, 0, 0));
         EXPECT_LT(length(pa.p - pb.p), 1e-4f);
         EXPECT_EQ(pa.material, pb.material);
         on_instances += a.instance != kNotInstanced;

@@ -144,6 +144,33 @@ TEST(Lights, AreaLightShapesMatchQuadratureAndAreOneSided) {
   }
 }
 
+TEST(Lights, MeshLightSamplesMatchQuadratureAndTheDensityARayFinds) {
+  // An emissive quad of 2 × 1.2 m (two triangles), 0.9 m above the origin.
+  const float h = 0.9f, sx = 2.0f, sy = 1.2f;
+  Scene scene;
+  scene.add_material(Material{{}, RGB(3.0f)});
+  scene.add_mesh(make_quad(Vec3(-0.5f * sx, -0.5f * sy, h), Vec3(sx, 0, 0), Vec3(0, sy, 0), 0).view());
+  scene.commit();
+  ASSERT_EQ(scene.lights().size(), 1u);
+  const Light& light = scene.lights()[0];
+  ASSERT_EQ(light.type, LightType::Mesh);
+  ASSERT_EQ(light.triangles.size(), 2u);
+  const double truth = quadrature_irradiance(3.0, h, sx, sy, [](double, double) { return true; });
+  EXPECT_NEAR(estimate_irradiance(light, Vec3(0, 0, 0), Vec3(0, 0, 1), 40000), truth, 4e-3 * truth);
+  // Each sample's pdf is the density a BSDF ray that finds the same point weighs it with.
+  const Vec3 p(0.7f, -0.4f, 0.0f);
+  PCG32 rng(3, 5);
+  for (int i = 0; i < 500; ++i) {
+    const LightSample s = sample_light(light, p, Point2(rng.uniform(), rng.uniform()));
+    ASSERT_GT(s.pdf, 0.0f) << i;
+    ASSERT_GE(s.triangle, 0);
+    const Vec3 q = p + s.wi * s.distance;
+    EXPECT_NEAR(q.z, h, 1e-5f) << i;
+    const float found = mesh_light_pdf(light, p, q, light.triangles[size_t(s.triangle)].normal);
+    EXPECT_NEAR(found, s.pdf, 1e-4f * s.pdf) << i;
+  }
+}
+
 TEST(Lights, SamplerPicksByPower) {
   std::vector<Light> lights = {point_light_from_power(Vec3(0, 0, 1), 1000.0f, RGB(1.0f)),
                                point_light_from_power(Vec3(0, 0, 1), 10.0f, RGB(1.0f)),
