@@ -152,11 +152,10 @@ class Scene {
   void occluded_stream(const Vec3* origins, const Vec3* dirs, const float* tmax, int count,
                        uint8_t* occluded) const;
   SurfacePoint surface_point(const Hit& hit) const;
-  // The same, written into *out (a path vertex's point, filled where it is kept).
-  void surface_point(const Hit& hit, SurfacePoint* out) const { surface_point(hit, out, true); }
-  // The same without the tangent where with_tangent is false (out->tangent is then zero): for a
-  // caller whose closures read none.
-  void surface_point(const Hit& hit, SurfacePoint* out, bool with_tangent) const;
+  // The same, written into *out (a path vertex's point, filled where it is kept); without the
+  // tangent where with_tangent is false (out->tangent is then zero), for a caller whose
+  // closures read none.
+  void surface_point(const Hit& hit, SurfacePoint* out, bool with_tangent = true) const;
 
   // Mesh attributes at a hit, for material graphs (hit barycentrics may lie outside the
   // triangle: attributes extrapolate linearly, as ray differentials need).
