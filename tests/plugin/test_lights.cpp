@@ -149,7 +149,8 @@ TEST(Lights, MeshLightSamplesMatchQuadratureAndTheDensityARayFinds) {
   const float h = 0.9f, sx = 2.0f, sy = 1.2f;
   Scene scene;
   scene.add_material(Material{{}, RGB(3.0f)});
-  scene.add_mesh(make_quad(Vec3(-0.5f * sx, -0.5f * sy, h), Vec3(sx, 0, 0), Vec3(0, sy, 0), 0).view());
+  const Mesh quad = make_quad(Vec3(-0.5f * sx, -0.5f * sy, h), Vec3(sx, 0, 0), Vec3(0, sy, 0), 0);
+  scene.add_mesh(quad.view());
   scene.commit();
   ASSERT_EQ(scene.lights().size(), 1u);
   const Light& light = scene.lights()[0];

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "bxdf/math.h"
+
 namespace bxdf::render {
 
 // The index of the first entry of the ascending `cdf` above x (std::upper_bound's). A few
@@ -23,6 +25,6 @@ inline size_t first_above(const std::vector<float>& cdf, float x) {
 
 // A number's place within the interval it fell in, (x − lo) / width, clamped back to [0, 1):
 // the picked light, or triangle, samples with it.
-inline float into_unit_interval(float v) { return std::min(std::max(v, 0.0f), 0x1.fffffep-1f); }
+inline float into_unit_interval(float v) { return clamp(v, 0.0f, 0x1.fffffep-1f); }
 
 }  // namespace bxdf::render
