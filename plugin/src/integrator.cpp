@@ -353,6 +353,8 @@ void PathTracer::advance_deferring_shadow(PathState& s, const PathSampler& sampl
                                           const PreparedHit* prepared,
                                           const Vec3* registers,
                                           const WalkSlots& walk_slots) const {
+  // An escaped ray shades nothing: no walk evaluates or samples.
+  if (!hit) return step(s, sampler, stats, nullptr, nullptr, nullptr);
   // Restored however step() leaves, so that no later evaluation on this thread sees the salt
   // or the numbers.
   struct Restore {
@@ -367,7 +369,7 @@ void PathTracer::advance_deferring_shadow(PathState& s, const PathSampler& sampl
   microfacet::WalkNumbers numbers = vertex_walk_numbers(s, sampler);
   *walk_slots.salt = sampler.walk_salt();
   *walk_slots.numbers = &numbers;
-  step(s, sampler, stats, hit, prepared, registers);  // an escaped path samples no light
+  step(s, sampler, stats, hit, prepared, registers);
 }
 
 void PathTracer::test_shadow(PathState& s) const {
@@ -581,14 +583,26 @@ void PathTracer::step(PathState& s, const PathSampler& sampler, PathStats& stats
 
 PathResult PathTracer::finish(PathState& s, PathStats& stats) const {
   test_shadow(s);  // the last vertex's, if the caller left it
-  RGB L = s.L;
-  PathResult result = s.result;
+  return accepted(s.L, s.result.alpha, stats);
+}
+
+PathResult PathTracer::escaped_camera_ray(const Ray& camera_ray, PathStats& stats) const {
+  // step() at a path's first vertex, its ray escaped: beta is 1, the ray a camera ray, and
+  // everything it finds is counted in full (no vertex before it to weigh against).
+  RGB L = lights_along_ray(camera_ray, kInfinity, true, true, 0.0f, LightReceiver{});
+  if (!settings_.transparent_background) L += escaped(camera_ray.dir, true, true, 0.0f);
+  return accepted(L, 0.0f, stats);
+}
+
+PathResult PathTracer::accepted(RGB L, float alpha, PathStats& stats) const {
   const bool finite = std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b);
   if (!finite || (!scene_.signed_emission() && !finite_nonnegative(L))) {
     ++stats.rejected;
     L = RGB(0.0f);
   }
+  PathResult result;
   result.radiance = L;
+  result.alpha = alpha;
   return result;
 }
 

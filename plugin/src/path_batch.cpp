@@ -127,15 +127,23 @@ void PathBatch::trace(PathStats& stats) {
   for (int k = 0; k < count_; k += Scene::kCameraPacket)
     scene_.intersect_camera_rays(&camera_rays_[size_t(k)], std::min(Scene::kCameraPacket, count_ - k),
                                  &camera_hits_[size_t(k)]);
+  // A camera ray that escaped is finished at once (most of a small object's frame): it needs
+  // no path state, numbers or shading, only what the world and lights give it.
+  int live = 0;
   for (int k = 0; k < count_; ++k) {
-    tracer_.begin(camera_rays_[size_t(k)], &paths_[size_t(k)]);
     ++stats.rays;
     const CameraHit& h = camera_hits_[size_t(k)];
-    live_[size_t(k)] = k;
-    found_[size_t(k)] = h.found;
-    if (h.found) hits_[size_t(k)] = h.hit;
+    escaped_[size_t(k)] = !h.found;
+    if (!h.found) {
+      results_[size_t(k)] = tracer_.escaped_camera_ray(camera_rays_[size_t(k)], stats);
+      continue;
+    }
+    tracer_.begin(camera_rays_[size_t(k)], &paths_[size_t(k)]);
+    live_[size_t(live)] = k;
+    found_[size_t(live)] = 1;
+    hits_[size_t(live++)] = h.hit;
   }
-  int live = advance_live(count_, stats);
+  live = advance_live(live, stats);
   while (live > 0) {
     for (int a = 0; a < live; ++a) {
       const PathState& path = paths_[size_t(live_[size_t(a)])];
@@ -147,7 +155,8 @@ void PathBatch::trace(PathStats& stats) {
     prefetch_shading(live);
     live = advance_live(live, stats);
   }
-  for (int k = 0; k < count_; ++k) results_[size_t(k)] = tracer_.finish(paths_[size_t(k)], stats);
+  for (int k = 0; k < count_; ++k)
+    if (!escaped_[size_t(k)]) results_[size_t(k)] = tracer_.finish(paths_[size_t(k)], stats);
 }
 
 }  // namespace bxdf::render

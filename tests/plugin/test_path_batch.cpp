@@ -15,7 +15,11 @@ using namespace bxdf;
 using namespace bxdf::render;
 using json = nlohmann::json;
 
-TEST(PathBatch, EverySampleIsWhatTracingItAloneGives) {
+// `transparent_background`: camera rays that escape (finished at once by the batch) give no
+// world radiance and alpha 0, those that passed the veil first give its share.
+namespace {
+
+void expect_batches_trace_as_alone(bool transparent_background) {
   Scene scene;
   TextureStore textures;
   scene.add_material(Material{{make("lambertian")}, RGB(0.0f)});
@@ -43,6 +47,7 @@ TEST(PathBatch, EverySampleIsWhatTracingItAloneGives) {
   IntegratorSettings settings;
   settings.max_bounces = 6;
   settings.russian_roulette_depth = 1;
+  settings.transparent_background = transparent_background;
   const PathTracer tracer(scene, settings);
   CameraSettings cs;
   cs.camera_to_world = look_at(Vec3(0, -5, 1), Vec3(0, 0, 0), Vec3(0, 0, 1));
@@ -51,7 +56,7 @@ TEST(PathBatch, EverySampleIsWhatTracingItAloneGives) {
   // More samples than one batch holds, and a last batch not full.
   PathBatch batch(scene, tracer);
   PathStats batched, alone;
-  int compared = 0;
+  int compared = 0, escaped = 0;
   const auto check = [&] {
     batch.trace(batched);
     for (int k = 0; k < batch.size(); ++k) {
@@ -62,6 +67,7 @@ TEST(PathBatch, EverySampleIsWhatTracingItAloneGives) {
       CameraHit hit;
       scene.intersect_camera_rays(&ray, 1, &hit);
       const PathResult r = tracer.trace(ray, sampler, alone, &hit);
+      escaped += !hit.found;
       const PathResult& b = batch.result(k);
       ASSERT_TRUE(r.radiance.r == b.radiance.r && r.radiance.g == b.radiance.g &&
                   r.radiance.b == b.radiance.b && r.alpha == b.alpha)
@@ -87,4 +93,13 @@ TEST(PathBatch, EverySampleIsWhatTracingItAloneGives) {
   EXPECT_EQ(batched.shadow_rays, alone.shadow_rays);
   EXPECT_EQ(batched.rejected, alone.rejected);
   EXPECT_GT(batched.rays, uint64_t(2 * compared));  // paths went past their first hit
+  EXPECT_GT(escaped, 20);                            // and camera rays saw the sky
+}
+
+}  // namespace
+
+TEST(PathBatch, EverySampleIsWhatTracingItAloneGives) { expect_batches_trace_as_alone(false); }
+
+TEST(PathBatch, EverySampleIsWhatTracingItAloneGivesOnATransparentFilm) {
+  expect_batches_trace_as_alone(true);
 }

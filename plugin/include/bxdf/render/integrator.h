@@ -164,6 +164,9 @@ class PathTracer {
     if (!occluded) s.L += s.shadow.contribution;
   }
   PathResult finish(PathState& s, PathStats& stats) const;
+  // A camera sample whose ray escaped (it hit nothing, not even a transparent surface): the
+  // result begin(), advance() with no hit and finish() give, without a PathState.
+  PathResult escaped_camera_ray(const Ray& camera_ray, PathStats& stats) const;
 
  private:
   // One vertex: `prepared` and `registers` (its program's, where it ran) for a found hit. The
@@ -171,6 +174,9 @@ class PathTracer {
   // multiscatter_ggx.h).
   void step(PathState& s, const PathSampler& sampler, PathStats& stats, const Hit* hit,
             const PreparedHit* prepared, const Vec3* registers) const;
+  // A finished path's result: L where it is finite (and non-negative, unless the scene has
+  // negative emission), else 0 and the sample counted in stats.rejected.
+  PathResult accepted(RGB L, float alpha, PathStats& stats) const;
   // Tests s's pending shadow ray alone and resolves it.
   void test_shadow(PathState& s) const;
   // `receiver`: the hit's point and viewer_side_normal (PreparedHit::viewer_n, computed once
