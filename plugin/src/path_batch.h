@@ -1,5 +1,6 @@
 // Camera samples traced together, vertex by vertex (a small wavefront): the batch's camera rays
-// go to Embree in packets of nearby rays, each later vertex's rays in one stream query, and
+// go to Embree in packets of nearby rays (a sample whose camera ray hit nothing is finished
+// there, PathTracer::escaped_camera_ray), each later vertex's rays in one stream query, and
 // between a vertex's intersections and its shading passes over the batch start loading what
 // shading reads (the triangles' indices, then their vertices, then the texels a node material
 // looks up at the hit's UVs), so that the batch's memory waits overlap instead of following one

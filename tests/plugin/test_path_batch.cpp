@@ -15,10 +15,10 @@ using namespace bxdf;
 using namespace bxdf::render;
 using json = nlohmann::json;
 
-// `transparent_background`: camera rays that escape (finished at once by the batch) give no
-// world radiance and alpha 0, those that passed the veil first give its share.
 namespace {
 
+// `transparent_background`: camera rays that escape (finished at once by the batch) give no
+// world radiance and alpha 0, those that passed the veil first give its share.
 void expect_batches_trace_as_alone(bool transparent_background) {
   Scene scene;
   TextureStore textures;
