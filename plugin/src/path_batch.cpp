@@ -133,7 +133,6 @@ void PathBatch::trace(PathStats& stats) {
   for (int k = 0; k < count_; ++k) {
     ++stats.rays;
     const CameraHit& h = camera_hits_[size_t(k)];
-    escaped_[size_t(k)] = !h.found;
     if (!h.found) {
       results_[size_t(k)] = tracer_.escaped_camera_ray(camera_rays_[size_t(k)], stats);
       continue;
@@ -155,8 +154,8 @@ void PathBatch::trace(PathStats& stats) {
     prefetch_shading(live);
     live = advance_live(live, stats);
   }
-  for (int k = 0; k < count_; ++k)
-    if (!escaped_[size_t(k)]) results_[size_t(k)] = tracer_.finish(paths_[size_t(k)], stats);
+  for (int k = 0; k < count_; ++k)  // an escaped camera ray's result is already there
+    if (camera_hits_[size_t(k)].found) results_[size_t(k)] = tracer_.finish(paths_[size_t(k)], stats);
 }
 
 }  // namespace bxdf::render

@@ -71,8 +71,6 @@ class PathBatch {
   std::array<CameraHit, kSize> camera_hits_;
   std::array<PathState, kSize> paths_;
   std::array<PathResult, kSize> results_;
-  // Per sample: its camera ray escaped, and results_ already holds its result.
-  std::array<uint8_t, kSize> escaped_;
   // Per live path (index into the batch), its ray and what the stream query found.
   std::array<int, kSize> live_;
   std::array<const Ray*, kSize> rays_;
